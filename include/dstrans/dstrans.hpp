@@ -1,0 +1,17 @@
+// dstrans: deferred shading of transparent surfaces, as a header-only toolkit. This header includes
+// every public header; include the one you need instead to take only that piece.
+//
+//   #include <dstrans/dstrans.hpp>
+//   dstrans::glsl::source src;
+//   dstrans::glsl::add_layout<dstrans::thesis_gbuffer>(src, "gbuffer");
+//   dstrans::glsl::add_interlace<dstrans::interlace::rows>(src);
+//   std::puts(src.str().c_str());
+#pragma once
+
+#include "format.hpp"
+#include "gbuffer.hpp"
+#include "glsl.hpp"
+#include "interlace.hpp"
+#include "layout.hpp"
+#include "result.hpp"
+#include "surface.hpp"

@@ -1,0 +1,29 @@
+// The thesis's layouts (TECHNIQUES.md, S0): G-buffer (Table 3.1), light accumulation buffer (Table 3.2)
+// and transparent shadow map (Table 3.3).
+//
+//   static_assert(dstrans::thesis_gbuffer::bytes_per_pixel == 16);
+//   dstrans::glsl::source src;
+//   dstrans::glsl::add_layout<dstrans::thesis_gbuffer>(src, "gbuffer");
+#pragma once
+
+#include "layout.hpp"
+
+namespace dstrans {
+
+// Table 3.1: 4 targets, 16 bytes a pixel.
+using thesis_gbuffer = layout<surface,
+                              target<format::rgba8, field::diffuse, field::alpha>,
+                              target<format::rgb10a2, field::normal, unused<1>>,
+                              target<format::rgba8, field::spec_intensity, field::spec_power, unused<2>>,
+                              target<format::r32f, field::depth>>;
+
+// Table 3.2: light RGB and the white specular response, 4 bytes a pixel. Additive blending into RGBA8
+// saturates at 1, as in the thesis.
+using thesis_light_buffer = layout<light_sample, target<format::rgba8, field::light, field::specular>>;
+
+// Table 3.3: the occluder's depth, and the colour and alpha of a transparent occluder, 8 bytes a texel.
+using thesis_shadow_map = layout<surface,
+                                 target<format::r32f, field::depth>,
+                                 target<format::rgba8, field::diffuse, field::alpha>>;
+
+}  // namespace dstrans

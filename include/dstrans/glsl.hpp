@@ -1,0 +1,174 @@
+// GLSL source assembled from shared blocks and generated glue, with every line traceable to its origin.
+//
+//   dstrans::glsl::source src;
+//   src.add_shared(dstrans::text::dst_surface);           // a shared block, once however often added
+//   src.add("void main() {}\n", __FILE__, __LINE__);      // generated or hand-written text
+//   std::string code = src.str();                         // starts with "#version 450"
+//   std::string errors = src.map_log(compiler_log);       // "0:12: ..." -> "include/dstrans/x.hpp:40: ..."
+#pragma once
+
+#include <cctype>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "detail/shared.hpp"
+
+namespace dstrans::glsl {
+
+// Where a line of generated GLSL comes from.
+struct origin {
+  std::string file;
+  int line = 0;
+};
+
+// Shared code as GLSL: one statement a line, indented, with DST_FN / DST_OUT / DST_INOUT spelled out.
+inline std::string format_shared(const char* code) {
+  std::string in(code), out;
+  // The keywords first, so that formatting sees plain GLSL.
+  for (std::size_t i = 0; i < in.size();) {
+    auto starts = [&](const char* w) { return in.compare(i, std::char_traits<char>::length(w), w) == 0; };
+    const bool boundary = i == 0 || !(std::isalnum(static_cast<unsigned char>(in[i - 1])) || in[i - 1] == '_');
+    if (boundary && starts("DST_FN ")) {
+      i += 7;
+    } else if (boundary && (starts("DST_OUT(") || starts("DST_INOUT("))) {
+      const bool inout = starts("DST_INOUT(");
+      i += inout ? 10 : 8;
+      const std::size_t close = in.find(')', i);
+      std::string type = in.substr(i, close - i);
+      while (!type.empty() && type.back() == ' ') type.pop_back();
+      while (!type.empty() && type.front() == ' ') type.erase(0, 1);
+      out += (inout ? "inout " : "out ") + type;
+      i = close + 1;
+    } else {
+      out += in[i++];
+    }
+  }
+  in.swap(out);
+  out.clear();
+  int depth = 0, parens = 0;
+  bool line_start = true;
+  auto newline = [&] {
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    out += '\n';
+    line_start = true;
+  };
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const char c = in[i];
+    if (line_start) {
+      if (c == ' ') continue;
+      if (c == '}') --depth;
+      out.append(std::size_t(2 * (depth > 0 ? depth : 0)), ' ');
+      line_start = false;
+      if (c == '}') {
+        out += '}';
+        if (i + 1 < in.size() && in[i + 1] == ';') out += in[++i];
+        newline();
+        if (depth == 0) out += '\n';
+        continue;
+      }
+    }
+    if (c == '(') ++parens;
+    if (c == ')') --parens;
+    if (c == '{' && parens == 0) {
+      out += '{';
+      ++depth;
+      newline();
+    } else if (c == ';' && parens == 0) {
+      out += ';';
+      newline();
+    } else if (c == '}' && parens == 0) {
+      newline();
+      --i;  // emit it at the start of its own line
+    } else {
+      out += c;
+    }
+  }
+  if (!line_start) newline();
+  return out;
+}
+
+// A GLSL translation unit under construction.
+class source {
+ public:
+  source() { add("#version 450\n", __FILE__, __LINE__); }
+
+  // Appends `text`, whose first line is line `line` of `file`; its other lines follow on.
+  void add(const std::string& text, const std::string& file, int line) {
+    int n = 0;
+    for (char c : text) n += c == '\n';
+    if (!text.empty() && text.back() != '\n') ++n;
+    for (int k = 0; k < n; ++k) lines_.push_back({file, line + k});
+    code_ += text;
+    if (!text.empty() && text.back() != '\n') code_ += '\n';
+  }
+
+  // Appends a shared block unless it is already in; every line maps to the block's DSTRANS_SHARED line.
+  void add_shared(const shared_text& block) {
+    for (const shared_text* b : shared_)
+      if (b == &block) return;
+    shared_.push_back(&block);
+    const std::string text = format_shared(block.code);
+    for (char c : text)
+      if (c == '\n') lines_.push_back({block.file, block.line});
+    code_ += text;
+  }
+
+  // Whether shared block `block` is part of this source.
+  bool has(const shared_text& block) const {
+    for (const shared_text* b : shared_)
+      if (b == &block) return true;
+    return false;
+  }
+
+  const std::string& str() const { return code_; }
+
+  // The origin of 1-based line `line` of str(); an empty file when out of range.
+  origin origin_of(int line) const {
+    if (line < 1 || line > int(lines_.size())) return {};
+    return lines_[std::size_t(line - 1)];
+  }
+
+  // A compiler log with every "0:LINE" (glslang) or "0:LINE(COL)" (Mesa) position rewritten as the
+  // "file:line" of the text it came from, followed by the generated line number.
+  std::string map_log(const std::string& log) const {
+    std::string out;
+    std::size_t i = 0;
+    while (i < log.size()) {
+      const std::size_t eol = log.find('\n', i);
+      const std::string row = log.substr(i, eol == std::string::npos ? std::string::npos : eol - i);
+      out += map_row(row);
+      if (eol == std::string::npos) break;
+      out += '\n';
+      i = eol + 1;
+    }
+    return out;
+  }
+
+ private:
+  std::string map_row(const std::string& row) const {
+    const std::size_t at = row.find("0:");
+    if (at == std::string::npos || (at > 0 && std::isdigit(static_cast<unsigned char>(row[at - 1]))))
+      return row;
+    std::size_t end = at + 2;
+    while (end < row.size() && std::isdigit(static_cast<unsigned char>(row[end]))) ++end;
+    if (end == at + 2) return row;
+    const int line = std::stoi(row.substr(at + 2, end - at - 2));
+    if (end < row.size() && row[end] == '(') end = row.find(')', end) + 1;  // Mesa's column
+    const origin o = origin_of(line);
+    if (o.file.empty()) return row;
+    // glslang puts the severity first ("ERROR: 0:12: msg"), Mesa after ("0:12(5): error: msg").
+    const std::string severity = row.compare(0, at, "ERROR: ") == 0     ? " error:"
+                                 : row.compare(0, at, "WARNING: ") == 0 ? " warning:"
+                                                                        : "";
+    const std::string rest = row.compare(end, 1, ":") == 0 ? row.substr(end + 1) : row.substr(end);
+    return o.file + ":" + std::to_string(o.line) + ":" + severity + rest + " (generated line " +
+           std::to_string(line) + ")";
+  }
+
+  std::string code_;
+  std::vector<origin> lines_;
+  std::vector<const shared_text*> shared_;
+};
+
+}  // namespace dstrans::glsl

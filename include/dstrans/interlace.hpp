@@ -1,0 +1,90 @@
+// Interlace predicates: which pixels of a single-layer G-buffer (or shadow map) may keep a transparent
+// fragment, and where each pixel finds the other layer (its partner).
+//
+//   using I = dstrans::interlace::rows;                       // the thesis's (Pangerl's) predicate
+//   bool keep = I::keep({x, y}, {w, h});                       // false: discard the transparent fragment
+//   glm::ivec2 other = I::partner({x, y}, {w, h});
+//   dstrans::glsl::source src;
+//   dstrans::glsl::add_interlace<I>(src);                      // dst_interlace_keep / _partner in GLSL
+//
+// Pixels are (column from the left, row from the top) of the image as stored, on GL and Vulkan alike;
+// `size` is the image's width and height. Behaviour at the edges, for pixels inside the image:
+// - rows: odd rows keep transparency (row 0 is even, so a 1-row image shows no glass). The partner is
+//   the row above, as the thesis's compose pass samples it; row 0 takes row 1. Every pixel and its
+//   partner then differ in parity, so one is transparent-capable and one is not, at any height >= 2.
+// - columns: the same with columns: odd columns keep, the partner is the column to the left.
+// - checker: the 2x2 checkerboard: pixels with x + y odd keep; the partner is the left neighbour
+//   (column 1 for column 0), or, in a 1-pixel-wide image, the row neighbour as for rows.
+// - none: every pixel keeps transparency and is its own partner (no interlacing: one layer only).
+// Where no partner exists (a 1-pixel extent along the predicate's axis), the partner is the pixel itself.
+#pragma once
+
+#include <string>
+
+#include "detail/shared.hpp"
+#include "glsl.hpp"
+
+DSTRANS_SHARED(dst_interlace_rows,
+DST_FN bool dst_rows_keep(ivec2 p, ivec2 size) { return (p.y & 1) == 1; }
+DST_FN ivec2 dst_rows_partner(ivec2 p, ivec2 size) {
+  if (size.y < 2) return p;
+  return ivec2(p.x, p.y > 0 ? p.y - 1 : 1);
+}
+)
+
+DSTRANS_SHARED(dst_interlace_columns,
+DST_FN bool dst_columns_keep(ivec2 p, ivec2 size) { return (p.x & 1) == 1; }
+DST_FN ivec2 dst_columns_partner(ivec2 p, ivec2 size) {
+  if (size.x < 2) return p;
+  return ivec2(p.x > 0 ? p.x - 1 : 1, p.y);
+}
+)
+
+DSTRANS_SHARED(dst_interlace_checker,
+DST_FN bool dst_checker_keep(ivec2 p, ivec2 size) { return ((p.x + p.y) & 1) == 1; }
+DST_FN ivec2 dst_checker_partner(ivec2 p, ivec2 size) {
+  if (size.x >= 2) return ivec2(p.x > 0 ? p.x - 1 : 1, p.y);
+  if (size.y >= 2) return ivec2(p.x, p.y > 0 ? p.y - 1 : 1);
+  return p;
+}
+)
+
+DSTRANS_SHARED(dst_interlace_none,
+DST_FN bool dst_none_keep(ivec2 p, ivec2 size) { return true; }
+DST_FN ivec2 dst_none_partner(ivec2 p, ivec2 size) { return p; }
+)
+
+namespace dstrans {
+namespace interlace {
+
+#define DSTRANS_INTERLACE(kind)                                                                      \
+  struct kind {                                                                                      \
+    static constexpr const char* name = #kind;                                                       \
+    static constexpr const shared_text& text = ::dstrans::text::dst_interlace_##kind;                \
+    static bool keep(glm::ivec2 p, glm::ivec2 size) { return shader::dst_##kind##_keep(p, size); }    \
+    static glm::ivec2 partner(glm::ivec2 p, glm::ivec2 size) { return shader::dst_##kind##_partner(p, size); } \
+  };
+DSTRANS_INTERLACE(rows)
+DSTRANS_INTERLACE(columns)
+DSTRANS_INTERLACE(checker)
+DSTRANS_INTERLACE(none)
+#undef DSTRANS_INTERLACE
+
+}  // namespace interlace
+
+namespace glsl {
+
+// Appends predicate I and binds the generic names the passes call:
+//   bool dst_interlace_keep(ivec2 pixel, ivec2 size); ivec2 dst_interlace_partner(ivec2 pixel, ivec2 size);
+template <class I>
+void add_interlace(source& src) {
+  src.add_shared(I::text);
+  const std::string k = std::string("dst_") + I::name;
+  src.add("// dstrans interlace predicate \"" + std::string(I::name) + "\"\n" +
+              "bool dst_interlace_keep(ivec2 pixel, ivec2 size) { return " + k + "_keep(pixel, size); }\n" +
+              "ivec2 dst_interlace_partner(ivec2 pixel, ivec2 size) { return " + k + "_partner(pixel, size); }\n",
+          __FILE__, __LINE__);
+}
+
+}  // namespace glsl
+}  // namespace dstrans

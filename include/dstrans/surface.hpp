@@ -1,0 +1,66 @@
+// The records a layout stores (a G-buffer surface, a light-buffer sample) and the encodings that
+// squeeze their fields into UNORM channels. All of it is shared code: C++ and GLSL use this one text.
+//
+//   dstrans::surface s = dstrans::shader::dst_surface_zero();
+//   s.normal = glm::vec3(0.0f, 1.0f, 0.0f);
+//   glm::vec3 stored = dstrans::shader::dst_encode_normal(s.normal);   // (0.5, 1, 0.5)
+#pragma once
+
+#include "detail/shared.hpp"
+
+// What the G-buffer holds for one pixel (and a shadow map for one occluder: depth, diffuse, alpha).
+// diffuse and alpha in [0, 1]; alpha below 1 marks a transparent surface; normal is a world-space unit
+// vector; spec_intensity in [0, 1]; spec_power in [0, 255] (the Phong exponent); depth is the
+// window-space depth in [0, 1], 1 where nothing was drawn.
+DSTRANS_SHARED(dst_surface,
+struct dst_surface {
+  vec3 diffuse;
+  float alpha;
+  vec3 normal;
+  float spec_intensity;
+  float spec_power;
+  float depth;
+};
+DST_FN dst_surface dst_surface_zero() {
+  dst_surface s;
+  s.diffuse = vec3(0.0f);
+  s.alpha = 0.0f;
+  s.normal = vec3(0.0f);
+  s.spec_intensity = 0.0f;
+  s.spec_power = 0.0f;
+  s.depth = 0.0f;
+  return s;
+}
+)
+
+// What the light accumulation buffer holds for one pixel: the light that reached it (RGB, without the
+// surface's diffuse colour) and the white specular response (without the surface's spec_intensity).
+DSTRANS_SHARED(dst_light_sample,
+struct dst_light_sample {
+  vec3 light;
+  float specular;
+};
+DST_FN dst_light_sample dst_light_sample_zero() {
+  dst_light_sample s;
+  s.light = vec3(0.0f);
+  s.specular = 0.0f;
+  return s;
+}
+)
+
+// A unit normal in a UNORM target: [-1, 1] maps to [0, 1].
+DSTRANS_SHARED(dst_normal_unorm,
+DST_FN vec3 dst_encode_normal(vec3 n) { return n * 0.5f + 0.5f; }
+DST_FN vec3 dst_decode_normal(vec3 e) { return e * 2.0f - 1.0f; }
+)
+
+// A Phong exponent in a UNORM target: [0, 255] maps to [0, 1], so 8 bits keep every integer power.
+DSTRANS_SHARED(dst_spec_power_unorm,
+DST_FN float dst_encode_spec_power(float p) { return p * (1.0f / 255.0f); }
+DST_FN float dst_decode_spec_power(float e) { return e * 255.0f; }
+)
+
+namespace dstrans {
+using surface = shader::dst_surface;
+using light_sample = shader::dst_light_sample;
+}  // namespace dstrans

@@ -1,0 +1,19 @@
+# Builds and runs a consumer project: cmake -DKIND=subdir|installed -DSOURCE=... -DBUILD=... -DWORK=... -P consumer.cmake
+# For KIND=installed, dstrans is first installed from BUILD into WORK/prefix.
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  message("${out}")
+endfunction()
+
+file(REMOVE_RECURSE ${WORK})
+set(args -DDSTRANS_SOURCE_DIR=${SOURCE})
+if(KIND STREQUAL "installed")
+  run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
+  set(args -DCMAKE_PREFIX_PATH=${WORK}/prefix)
+endif()
+run(${CMAKE_COMMAND} -S ${SOURCE}/tests/consumers/${KIND} -B ${WORK}/build ${args})
+run(${CMAKE_COMMAND} --build ${WORK}/build)
+run(${WORK}/build/consumer)

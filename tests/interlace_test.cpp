@@ -1,0 +1,72 @@
+// Interlace predicates: the parity rules, and partners at every edge and size.
+#include <catch2/catch.hpp>
+
+#include <dstrans/interlace.hpp>
+
+using namespace dstrans;
+
+namespace {
+// Checks every pixel of every image up to 9x9; `has_partner(w, h)` says where a partner must exist.
+template <class I>
+void check_partners(bool (*has_partner)(int w, int h)) {
+  for (int w = 1; w <= 9; ++w)
+    for (int h = 1; h <= 9; ++h)
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const glm::ivec2 p{x, y}, size{w, h}, q = I::partner(p, size);
+          INFO(I::name << " size " << w << "x" << h << " pixel " << x << "," << y);
+          REQUIRE(q.x >= 0);
+          REQUIRE(q.y >= 0);
+          REQUIRE(q.x < w);
+          REQUIRE(q.y < h);
+          if (has_partner(w, h)) {
+            // The other layer always lives on a pixel of the other kind, one step away.
+            REQUIRE(I::keep(q, size) != I::keep(p, size));
+            REQUIRE(std::abs(q.x - p.x) + std::abs(q.y - p.y) == 1);
+          } else {
+            REQUIRE(q == p);
+          }
+        }
+}
+}  // namespace
+
+TEST_CASE("rows: odd rows keep transparency, the partner is the row above", "[interlace]") {
+  using I = interlace::rows;
+  CHECK_FALSE(I::keep({0, 0}, {4, 4}));
+  CHECK(I::keep({3, 1}, {4, 4}));
+  CHECK_FALSE(I::keep({3, 2}, {4, 4}));
+  CHECK(I::partner({2, 3}, {4, 4}) == glm::ivec2(2, 2));
+  CHECK(I::partner({2, 0}, {4, 4}) == glm::ivec2(2, 1));  // row 0 has nothing above
+  CHECK(I::partner({2, 4}, {4, 5}) == glm::ivec2(2, 3));  // last row of an odd height
+  CHECK(I::partner({2, 0}, {4, 1}) == glm::ivec2(2, 0));  // a 1-row image has no partner
+  check_partners<I>([](int, int h) { return h >= 2; });
+}
+
+TEST_CASE("columns: odd columns keep transparency, the partner is the column to the left", "[interlace]") {
+  using I = interlace::columns;
+  CHECK(I::keep({1, 0}, {4, 4}));
+  CHECK_FALSE(I::keep({2, 3}, {4, 4}));
+  CHECK(I::partner({0, 2}, {4, 4}) == glm::ivec2(1, 2));
+  CHECK(I::partner({3, 2}, {4, 4}) == glm::ivec2(2, 2));
+  check_partners<I>([](int w, int) { return w >= 2; });
+}
+
+TEST_CASE("checker: x + y odd keeps transparency; the partner is a 4-neighbour", "[interlace]") {
+  using I = interlace::checker;
+  CHECK(I::keep({1, 0}, {4, 4}));
+  CHECK(I::keep({0, 1}, {4, 4}));
+  CHECK_FALSE(I::keep({1, 1}, {4, 4}));
+  CHECK(I::partner({0, 0}, {4, 4}) == glm::ivec2(1, 0));
+  CHECK(I::partner({0, 3}, {1, 4}) == glm::ivec2(0, 2));  // 1 pixel wide: vertical partner
+  CHECK(I::partner({0, 0}, {1, 1}) == glm::ivec2(0, 0));
+  check_partners<I>([](int w, int h) { return w >= 2 || h >= 2; });
+}
+
+TEST_CASE("none: every pixel keeps transparency and is its own partner", "[interlace]") {
+  using I = interlace::none;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x) {
+      CHECK(I::keep({x, y}, {3, 3}));
+      CHECK(I::partner({x, y}, {3, 3}) == glm::ivec2(x, y));
+    }
+}

@@ -1,0 +1,103 @@
+// Layout facts (Tables 3.1-3.3), CPU pack/unpack and write/read, and the layout description.
+#include <catch2/catch.hpp>
+
+#include <dstrans/gbuffer.hpp>
+
+using namespace dstrans;
+
+namespace {
+surface sample_surface() {
+  surface s = shader::dst_surface_zero();
+  s.diffuse = {1.0f, 0.0f, 0.2f};
+  s.alpha = 0.6f;
+  s.normal = glm::normalize(glm::vec3(0.3f, -0.5f, 0.81f));
+  s.spec_intensity = 0.75f;
+  s.spec_power = 32.0f;
+  s.depth = 0.123456789f;
+  return s;
+}
+
+// A float-heavy layout that exercises the non-UNORM paths.
+using float_layout = layout<surface, target<format::rgba16f, field::normal, field::alpha>,
+                            target<format::rgba32f, field::diffuse, field::depth>,
+                            target<format::rg16f, field::spec_intensity, field::spec_power>>;
+}  // namespace
+
+static_assert(thesis_gbuffer::target_count == 4 && thesis_gbuffer::bytes_per_pixel == 16);
+static_assert(thesis_light_buffer::target_count == 1 && thesis_light_buffer::bytes_per_pixel == 4);
+static_assert(thesis_shadow_map::target_count == 2 && thesis_shadow_map::bytes_per_pixel == 8);
+static_assert(thesis_gbuffer::stores<field::normal>() && !thesis_shadow_map::stores<field::normal>());
+static_assert(requires_fields<thesis_shadow_map, field::depth, field::diffuse, field::alpha>());
+static_assert(float_layout::bytes_per_pixel == 8 + 16 + 4);
+
+TEST_CASE("the thesis layouts are Tables 3.1, 3.2 and 3.3", "[layout]") {
+  const auto g = describe<thesis_gbuffer>();
+  REQUIRE(g.size() == 4);
+  CHECK(g[0].fmt == format::rgba8);
+  CHECK(g[0].channels == std::vector<std::string>{"diffuse.r", "diffuse.g", "diffuse.b", "alpha"});
+  CHECK(g[1].fmt == format::rgb10a2);
+  CHECK(g[1].channels == std::vector<std::string>{"normal.x", "normal.y", "normal.z", "unused"});
+  CHECK(g[2].fmt == format::rgba8);
+  CHECK(g[2].channels == std::vector<std::string>{"spec_intensity", "spec_power", "unused", "unused"});
+  CHECK(g[3].fmt == format::r32f);
+  CHECK(g[3].channels == std::vector<std::string>{"depth"});
+
+  const auto l = describe<thesis_light_buffer>();
+  REQUIRE(l.size() == 1);
+  CHECK(l[0].fmt == format::rgba8);
+  CHECK(l[0].channels == std::vector<std::string>{"light.r", "light.g", "light.b", "specular"});
+
+  const auto s = describe<thesis_shadow_map>();
+  REQUIRE(s.size() == 2);
+  CHECK(s[0].fmt == format::r32f);
+  CHECK(s[1].channels == std::vector<std::string>{"diffuse.r", "diffuse.g", "diffuse.b", "alpha"});
+}
+
+TEST_CASE("pack applies each field's UNORM codec and places channels in order", "[layout]") {
+  const surface s = sample_surface();
+  const auto v = pack<thesis_gbuffer>(s);
+  CHECK(v[0] == glm::vec4(s.diffuse, s.alpha));
+  CHECK(v[1] == glm::vec4(shader::dst_encode_normal(s.normal), 0.0f));
+  CHECK(v[2] == glm::vec4(0.75f, shader::dst_encode_spec_power(32.0f), 0.0f, 0.0f));
+  CHECK(v[3] == glm::vec4(s.depth, 0.0f, 0.0f, 0.0f));
+  // Float targets store fields as they are.
+  const auto f = pack<float_layout>(s);
+  CHECK(f[0] == glm::vec4(s.normal, s.alpha));
+  CHECK(f[2] == glm::vec4(0.75f, 32.0f, 0.0f, 0.0f));
+  const surface back = unpack<float_layout>(f);
+  CHECK(back.normal == s.normal);
+  CHECK(back.spec_power == 32.0f);
+  CHECK(back.depth == s.depth);
+}
+
+TEST_CASE("write gives the GPU's bytes and read inverts it within quantisation", "[layout]") {
+  const surface s = sample_surface();
+  const auto t = write<thesis_gbuffer>(s);
+  CHECK(t[0][0] == 255);
+  CHECK(t[0][1] == 0);
+  CHECK(t[0][2] == 51);
+  CHECK(t[0][3] == 153);
+  CHECK(t[2][1] == 32);  // every integer power survives 8 bits
+  const surface r = read<thesis_gbuffer>(t);
+  CHECK(r.alpha == 153.0f / 255.0f);
+  CHECK(r.spec_power == Approx(32.0f).margin(1e-4));
+  CHECK(r.depth == s.depth);  // R32F is exact
+  for (int i = 0; i < 3; ++i) CHECK(r.normal[i] == Approx(s.normal[i]).margin(1.0 / 1023.0));
+  // read(write(read(x))) == read(x): quantised values are fixed points.
+  const auto t2 = write<thesis_gbuffer>(r);
+  CHECK(t2 == t);
+}
+
+TEST_CASE("fields a layout does not store read back as zero", "[layout]") {
+  const surface r = read<thesis_shadow_map>(write<thesis_shadow_map>(sample_surface()));
+  CHECK(r.normal == glm::vec3(0.0f));
+  CHECK(r.spec_power == 0.0f);
+  CHECK(r.alpha == 153.0f / 255.0f);
+
+  light_sample ls = shader::dst_light_sample_zero();
+  ls.light = {2.0f, 0.5f, -1.0f};  // RGBA8 saturates, as the thesis's light buffer does
+  ls.specular = 0.25f;
+  const light_sample lr = read<thesis_light_buffer>(write<thesis_light_buffer>(ls));
+  CHECK(lr.light == glm::vec3(1.0f, 128.0f / 255.0f, 0.0f));
+  CHECK(lr.specular == 64.0f / 255.0f);
+}

@@ -1,0 +1,103 @@
+// dstrans gen: prints the GLSL that the templates generate, ready for glslangValidator as it is.
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <dstrans/dstrans.hpp>
+
+#include "cli.hpp"
+
+namespace dstrans::cli {
+
+namespace {
+
+const char* const usage =
+    "usage: dstrans gen gbuffer <layout> [--side write|read|both] [--first-location N] [--first-binding N]\n"
+    "       dstrans gen interlace <predicate>\n"
+    "layouts:    thesis (Table 3.1), light (Table 3.2), shadow (Table 3.3)\n"
+    "predicates: rows (the thesis's), columns, checker, none\n";
+
+struct named_layout {
+  int targets;
+  std::function<void(glsl::source&, const glsl::layout_options&)> add;
+};
+
+// Layout L under `name`, the name the passes use for it.
+template <class L>
+named_layout entry(const char* name) {
+  return {L::target_count, [name](glsl::source& s, const glsl::layout_options& o) { glsl::add_layout<L>(s, name, o); }};
+}
+
+const std::map<std::string, named_layout>& layouts() {
+  static const std::map<std::string, named_layout> table{
+      {"thesis", entry<thesis_gbuffer>("gbuffer")},
+      {"light", entry<thesis_light_buffer>("light")},
+      {"shadow", entry<thesis_shadow_map>("shadow")},
+  };
+  return table;
+}
+
+const std::map<std::string, std::function<void(glsl::source&)>>& predicates() {
+  static const std::map<std::string, std::function<void(glsl::source&)>> table{
+      {"rows", glsl::add_interlace<interlace::rows>},
+      {"columns", glsl::add_interlace<interlace::columns>},
+      {"checker", glsl::add_interlace<interlace::checker>},
+      {"none", glsl::add_interlace<interlace::none>},
+  };
+  return table;
+}
+
+template <class Table>
+const typename Table::mapped_type& pick(const Table& table, const std::string& key, const std::string& what) {
+  const auto it = table.find(key);
+  if (it == table.end()) {
+    std::string known;
+    for (const auto& [name, fn] : table) known += (known.empty() ? "" : ", ") + name;
+    throw usage_error{"unknown " + what + " '" + key + "' (known: " + known + ")"};
+  }
+  return it->second;
+}
+
+glsl::side parse_side(const std::string& s) {
+  if (s == "write") return glsl::side::write;
+  if (s == "read") return glsl::side::read;
+  if (s == "both") return glsl::side::both;
+  throw usage_error{"--side must be write, read or both, not '" + s + "'"};
+}
+
+}  // namespace
+
+int gen(std::vector<std::string> args) {
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
+    std::fputs(usage, stdout);
+    return 0;
+  }
+  try {
+    const std::string side = take_option(args, "--side", ""), location = take_option(args, "--first-location", ""),
+                      binding = take_option(args, "--first-binding", "");
+    if (args.size() != 2) throw usage_error{"gen takes a kind and a name"};
+    glsl::source src;
+    if (args[0] == "gbuffer") {
+      const named_layout& l = pick(layouts(), args[1], "layout");
+      glsl::layout_options opt;
+      if (!side.empty()) opt.sides = parse_side(side);
+      // Outputs must fit the 8 locations every GL 4.5 and Vulkan device has.
+      if (!location.empty()) opt.first_location = to_int(location, 0, 8 - l.targets, "--first-location");
+      if (!binding.empty()) opt.first_binding = to_int(binding, 0, 64 - l.targets, "--first-binding");
+      l.add(src, opt);
+    } else if (args[0] == "interlace") {
+      if (!(side + location + binding).empty()) throw usage_error{"gen interlace takes no options"};
+      pick(predicates(), args[1], "interlace predicate")(src);
+    }
+    else throw usage_error{"unknown kind '" + args[0] + "' (known: gbuffer, interlace)"};
+    std::fputs(src.str().c_str(), stdout);
+    return 0;
+  } catch (const usage_error& e) {
+    std::fprintf(stderr, "dstrans gen: %s\n%s", e.message.c_str(), usage);
+    return 2;
+  }
+}
+
+}  // namespace dstrans::cli

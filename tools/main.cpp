@@ -1,0 +1,58 @@
+// The dstrans command line (DESIGN.md, "The dstrans command line").
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+
+namespace {
+
+const char* const usage =
+    "usage: dstrans <command> [options]\n"
+    "commands:\n"
+    "  gen <what> [options]   print GLSL: gbuffer <layout>, interlace <predicate>\n"
+    "run 'dstrans <command> --help' for a command's options\n";
+
+}  // namespace
+
+namespace dstrans::cli {
+
+std::string take_option(std::vector<std::string>& args, const std::string& name, const std::string& fallback) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] != name) continue;
+    if (i + 1 >= args.size()) throw usage_error{"option " + name + " needs a value"};
+    std::string value = args[i + 1];
+    args.erase(args.begin() + long(i), args.begin() + long(i) + 2);
+    return value;
+  }
+  return fallback;
+}
+
+int to_int(const std::string& text, int lo, int hi, const std::string& what) {
+  std::size_t used = 0;
+  long v = 0;
+  try {
+    v = std::stol(text, &used);
+  } catch (...) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || v < lo || v > hi)
+    throw usage_error{what + " must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                      ", not '" + text + "'"};
+  return int(v);
+}
+
+}  // namespace dstrans::cli
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+    std::fputs(usage, args.empty() ? stderr : stdout);
+    return args.empty() ? 2 : 0;
+  }
+  const std::string command = args[0];
+  args.erase(args.begin());
+  if (command == "gen") return dstrans::cli::gen(args);
+  std::fprintf(stderr, "dstrans: unknown command '%s'\n%s", command.c_str(), usage);
+  return 2;
+}
