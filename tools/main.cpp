@@ -11,6 +11,7 @@ const char* const usage =
     "usage: dstrans <command> [options]\n"
     "commands:\n"
     "  gen <what> [options]   print GLSL: gbuffer <layout>, interlace <predicate>\n"
+    "  eval --backend B       evaluate shared formulas by name on cpu, gl or vk (JSON lines)\n"
     "run 'dstrans <command> --help' for a command's options\n";
 
 }  // namespace
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
   const std::string command = args[0];
   args.erase(args.begin());
   if (command == "gen") return dstrans::cli::gen(args);
+  if (command == "eval") return dstrans::cli::eval(args);
   std::fprintf(stderr, "dstrans: unknown command '%s'\n%s", command.c_str(), usage);
   return 2;
 }

@@ -42,7 +42,7 @@ result<std::vector<std::uint32_t>> compile(const glsl::source& src, stage st, ap
   shader.setEnvClient(vk ? glslang::EShClientVulkan : glslang::EShClientOpenGL,
                       vk ? glslang::EShTargetVulkan_1_2 : glslang::EShTargetOpenGL_450);
   shader.setEnvTarget(glslang::EShTargetSpv, vk ? glslang::EShTargetSpv_1_5 : glslang::EShTargetSpv_1_0);
-  const auto messages = EShMessages(EShMsgSpvRules | (vk ? EShMsgVulkanRules : 0));
+  const auto messages = EShMessages(EShMsgSpvRules | (vk ? int(EShMsgVulkanRules) : 0));
   if (!shader.parse(GetDefaultResources(), 450, false, messages))
     return failure{src.map_log(shader.getInfoLog())};
   glslang::TProgram program;

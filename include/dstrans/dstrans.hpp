@@ -9,9 +9,12 @@
 #pragma once
 
 #include "format.hpp"
+#include "formula.hpp"
+#include "fullscreen.hpp"
 #include "gbuffer.hpp"
 #include "glsl.hpp"
 #include "interlace.hpp"
 #include "layout.hpp"
+#include "light_mesh.hpp"
 #include "result.hpp"
 #include "surface.hpp"

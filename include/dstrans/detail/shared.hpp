@@ -22,6 +22,8 @@
 // maps compiler errors back to the line of the DSTRANS_SHARED block.
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 namespace dstrans {
@@ -49,6 +51,18 @@ using namespace glm;
 #define DST_OUT(T) T&
 #define DST_INOUT(T) T&
 
+namespace dstrans::detail {
+// Every shared block in the program, in no particular order: tests use it to find formulas that are not
+// reachable through dstrans eval.
+inline std::vector<const shared_text*>& shared_blocks() {
+  static std::vector<const shared_text*> blocks;
+  return blocks;
+}
+struct shared_block_registration {
+  explicit shared_block_registration(const shared_text* t) { shared_blocks().push_back(t); }
+};
+}  // namespace dstrans::detail
+
 // Parameters that a formula ignores on some inputs are still named, as GLSL wants; hence the pragma.
 #define DSTRANS_SHARED(ident, ...)                                                        \
   _Pragma("GCC diagnostic push") _Pragma("GCC diagnostic ignored \"-Wunused-parameter\"") \
@@ -56,4 +70,5 @@ using namespace glm;
   _Pragma("GCC diagnostic pop")                                                           \
   namespace dstrans::text {                                                               \
   inline constexpr ::dstrans::shared_text ident{#ident, #__VA_ARGS__, __FILE__, __LINE__}; \
+  inline const ::dstrans::detail::shared_block_registration ident##_registration{&ident};  \
   }

@@ -1,0 +1,318 @@
+// Implements dstrans_gl.hpp.
+#include "dstrans_gl.hpp"
+
+#include <cstring>
+
+namespace dstrans::gl {
+
+namespace {
+
+std::string shader_log(GLuint shader) {
+  GLint n = 0;
+  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &n);
+  std::string log(std::size_t(n > 0 ? n : 1), '\0');
+  glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
+  log.resize(std::strlen(log.c_str()));
+  return log;
+}
+
+std::string program_log(GLuint program) {
+  GLint n = 0;
+  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &n);
+  std::string log(std::size_t(n > 0 ? n : 1), '\0');
+  glGetProgramInfoLog(program, GLsizei(log.size()), nullptr, log.data());
+  log.resize(std::strlen(log.c_str()));
+  return log;
+}
+
+result<GLuint> compile(GLenum stage, const glsl::source& src, const std::string& label_text) {
+  const GLuint shader = glCreateShader(stage);
+  const char* text = src.str().c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    const std::string log = src.map_log(shader_log(shader));
+    glDeleteShader(shader);
+    return failure{label_text + ": " + log};
+  }
+  label(GL_SHADER, shader, label_text);
+  return shader;
+}
+
+result<GLuint> link(const std::vector<GLuint>& shaders, const std::string& label_text) {
+  const GLuint program = glCreateProgram();
+  for (GLuint s : shaders) glAttachShader(program, s);
+  glLinkProgram(program);
+  for (GLuint s : shaders) {
+    glDetachShader(program, s);
+    glDeleteShader(s);
+  }
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string log = program_log(program);
+    glDeleteProgram(program);
+    return failure{label_text + ": link failed: " + log};
+  }
+  label(GL_PROGRAM, program, label_text);
+  return program;
+}
+
+}  // namespace
+
+result<targets> make_targets(const std::vector<target_desc>& layout, int width, int height, const std::string& label_text,
+                             bool with_depth) {
+  GLint max_size = 0, max_draw = 0, max_attach = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &max_draw);
+  glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &max_attach);
+  if (width < 1 || height < 1 || width > max_size || height > max_size)
+    return failure{label_text + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                   " is not a size this device can render (1 to " + std::to_string(max_size) + " a side)"};
+  const int limit = max_draw < max_attach ? max_draw : max_attach;
+  if (int(layout.size()) > limit)
+    return failure{label_text + ": the layout has " + std::to_string(layout.size()) + " render targets; this device draws to " +
+                   std::to_string(limit) + " at most"};
+  for (const target_desc& d : layout) {
+    GLint renderable = GL_NONE;
+    glGetInternalformativ(GL_TEXTURE_2D, info(d.fmt).gl_internal_format, GL_FRAMEBUFFER_RENDERABLE, 1, &renderable);
+    if (renderable != GL_FULL_SUPPORT)
+      return failure{label_text + ": this device cannot render to " + info(d.fmt).name + " targets"};
+  }
+  targets t;
+  t.width = width;
+  t.height = height;
+  glCreateFramebuffers(1, &t.framebuffer);
+  label(GL_FRAMEBUFFER, t.framebuffer, label_text);
+  std::vector<GLenum> draw_buffers;
+  for (std::size_t i = 0; i < layout.size(); ++i) {
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, info(layout[i].fmt).gl_internal_format, width, height);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    label(GL_TEXTURE, tex, label_text + " RT" + std::to_string(i) + " " + info(layout[i].fmt).name);
+    glNamedFramebufferTexture(t.framebuffer, GLenum(GL_COLOR_ATTACHMENT0 + i), tex, 0);
+    draw_buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+    t.textures.push_back(tex);
+    t.formats.push_back(layout[i].fmt);
+  }
+  if (with_depth) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &t.depth);
+    glTextureStorage2D(t.depth, 1, GL_DEPTH_COMPONENT32F, width, height);
+    label(GL_TEXTURE, t.depth, label_text + " depth");
+    glNamedFramebufferTexture(t.framebuffer, GL_DEPTH_ATTACHMENT, t.depth, 0);
+  }
+  glNamedFramebufferDrawBuffers(t.framebuffer, GLsizei(draw_buffers.size()), draw_buffers.data());
+  const GLenum status = glCheckNamedFramebufferStatus(t.framebuffer, GL_DRAW_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    destroy(t);
+    return failure{label_text + ": the framebuffer is incomplete (status 0x" + [&] {
+      char hex[16];
+      std::snprintf(hex, sizeof hex, "%04x", status);
+      return std::string(hex);
+    }() + ")"};
+  }
+  return t;
+}
+
+void destroy(targets& t) {
+  if (!t.textures.empty()) glDeleteTextures(GLsizei(t.textures.size()), t.textures.data());
+  if (t.depth) glDeleteTextures(1, &t.depth);
+  if (t.framebuffer) glDeleteFramebuffers(1, &t.framebuffer);
+  t = targets{};
+}
+
+void bind(const targets& t) {
+  glBindFramebuffer(GL_FRAMEBUFFER, t.framebuffer);
+  glViewport(0, 0, t.width, t.height);
+  glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
+}
+
+std::vector<texel> read_texels(const targets& t, int index) {
+  // Each format is read back in the memory layout its GL type names: bytes for 8-bit UNORM, one packed
+  // word for RGB10A2, raw halves and floats.
+  const format f = t.formats[std::size_t(index)];
+  const format_info fi = info(f);
+  static const GLenum formats_by_channels[] = {0, GL_RED, GL_RG, GL_RGB, GL_RGBA};
+  GLenum gl_format = formats_by_channels[fi.channels], type = GL_FLOAT;
+  if (f == format::rgb10a2) type = GL_UNSIGNED_INT_2_10_10_10_REV;
+  else if (fi.kind == channel_kind::unorm) type = GL_UNSIGNED_BYTE;
+  else if (fi.bits[0] == 16) type = GL_HALF_FLOAT;
+  const std::size_t bpp = std::size_t(fi.bytes_per_pixel), n = std::size_t(t.width) * std::size_t(t.height);
+  std::vector<std::uint8_t> bytes(n * bpp);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(t.textures[std::size_t(index)], 0, gl_format, type, GLsizei(bytes.size()), bytes.data());
+  std::vector<texel> out(n);
+  for (std::size_t i = 0; i < n; ++i) std::memcpy(out[i].data(), &bytes[i * bpp], bpp);
+  return out;
+}
+
+result<GLuint> make_program(const glsl::source& vertex, const glsl::source& fragment, const std::string& label_text) {
+  auto vs = compile(GL_VERTEX_SHADER, vertex, label_text + " (vertex)");
+  if (!vs) return failure{vs.error()};
+  auto fs = compile(GL_FRAGMENT_SHADER, fragment, label_text + " (fragment)");
+  if (!fs) {
+    glDeleteShader(*vs);
+    return failure{fs.error()};
+  }
+  return link({*vs, *fs}, label_text);
+}
+
+result<GLuint> make_compute_program(const glsl::source& compute, const std::string& label_text) {
+  auto cs = compile(GL_COMPUTE_SHADER, compute, label_text + " (compute)");
+  if (!cs) return failure{cs.error()};
+  return link({*cs}, label_text);
+}
+
+mesh make_mesh(const mesh_data& data, const std::string& label_text) {
+  mesh m;
+  glCreateBuffers(1, &m.vertices);
+  glNamedBufferStorage(m.vertices, GLsizeiptr(data.positions.size() * sizeof(glm::vec3)), data.positions.data(), 0);
+  glCreateBuffers(1, &m.indices);
+  glNamedBufferStorage(m.indices, GLsizeiptr(data.indices.size() * sizeof(std::uint32_t)), data.indices.data(), 0);
+  glCreateVertexArrays(1, &m.vertex_array);
+  glVertexArrayVertexBuffer(m.vertex_array, 0, m.vertices, 0, sizeof(glm::vec3));
+  glVertexArrayElementBuffer(m.vertex_array, m.indices);
+  glEnableVertexArrayAttrib(m.vertex_array, 0);
+  glVertexArrayAttribFormat(m.vertex_array, 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(m.vertex_array, 0, 0);
+  label(GL_BUFFER, m.vertices, label_text + " vertices");
+  label(GL_BUFFER, m.indices, label_text + " indices");
+  label(GL_VERTEX_ARRAY, m.vertex_array, label_text);
+  m.index_count = GLsizei(data.indices.size());
+  return m;
+}
+
+void destroy(mesh& m) {
+  glDeleteVertexArrays(1, &m.vertex_array);
+  glDeleteBuffers(1, &m.vertices);
+  glDeleteBuffers(1, &m.indices);
+  m = mesh{};
+}
+
+void draw(const mesh& m) {
+  glBindVertexArray(m.vertex_array);
+  glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
+}
+
+void draw_fullscreen(GLuint empty_vertex_array) {
+  glBindVertexArray(empty_vertex_array);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+timer::timer() { glCreateQueries(GL_TIME_ELAPSED, 1, &query_); }
+timer::~timer() { glDeleteQueries(1, &query_); }
+void timer::begin() { glBeginQuery(GL_TIME_ELAPSED, query_); }
+void timer::end() { glEndQuery(GL_TIME_ELAPSED); }
+double timer::milliseconds() const {
+  GLuint64 ns = 0;
+  glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
+  return double(ns) * 1e-6;
+}
+
+void label(GLenum identifier, GLuint name, const std::string& text) {
+  glObjectLabel(identifier, name, GLsizei(text.size()), text.c_str());
+}
+
+debug_group::debug_group(const std::string& name) {
+  glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, GLsizei(name.size()), name.c_str());
+}
+debug_group::~debug_group() { glPopDebugGroup(); }
+
+state_guard::state_guard() {
+  glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fb_);
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fb_);
+  glGetIntegerv(GL_VIEWPORT, viewport_);
+  glGetIntegerv(GL_CLIP_ORIGIN, &clip_origin_);
+  glGetIntegerv(GL_CLIP_DEPTH_MODE, &clip_depth_);
+  glGetIntegerv(GL_DEPTH_FUNC, &depth_func_);
+  glGetIntegerv(GL_BLEND_SRC_RGB, &blend_src_rgb_);
+  glGetIntegerv(GL_BLEND_DST_RGB, &blend_dst_rgb_);
+  glGetIntegerv(GL_BLEND_SRC_ALPHA, &blend_src_a_);
+  glGetIntegerv(GL_BLEND_DST_ALPHA, &blend_dst_a_);
+  glGetIntegerv(GL_BLEND_EQUATION_RGB, &blend_eq_rgb_);
+  glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &blend_eq_a_);
+  glGetIntegerv(GL_CULL_FACE_MODE, &cull_face_);
+  glGetIntegerv(GL_FRONT_FACE, &front_face_);
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertex_array_);
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
+  for (GLuint i = 0; i < 16; ++i) {
+    glActiveTexture(GL_TEXTURE0 + i);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[i]);
+  }
+  glActiveTexture(GLenum(active_texture_));
+  for (GLuint i = 0; i < 8; ++i) glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &storage_[i]);
+  depth_test_ = glIsEnabled(GL_DEPTH_TEST);
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
+  blend_ = glIsEnabled(GL_BLEND);
+  cull_ = glIsEnabled(GL_CULL_FACE);
+  scissor_ = glIsEnabled(GL_SCISSOR_TEST);
+}
+
+state_guard::~state_guard() {
+  auto enable = [](GLenum cap, GLboolean on) { on ? glEnable(cap) : glDisable(cap); };
+  glUseProgram(GLuint(program_));
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_fb_));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_fb_));
+  glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  glClipControl(GLenum(clip_origin_), GLenum(clip_depth_));
+  glDepthFunc(GLenum(depth_func_));
+  glBlendFuncSeparate(GLenum(blend_src_rgb_), GLenum(blend_dst_rgb_), GLenum(blend_src_a_), GLenum(blend_dst_a_));
+  glBlendEquationSeparate(GLenum(blend_eq_rgb_), GLenum(blend_eq_a_));
+  glCullFace(GLenum(cull_face_));
+  glFrontFace(GLenum(front_face_));
+  glBindVertexArray(GLuint(vertex_array_));
+  for (GLuint i = 0; i < 16; ++i) {
+    glActiveTexture(GL_TEXTURE0 + i);
+    glBindTexture(GL_TEXTURE_2D, GLuint(textures_[i]));
+  }
+  glActiveTexture(GLenum(active_texture_));
+  for (GLuint i = 0; i < 8; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, GLuint(storage_[i]));
+  enable(GL_DEPTH_TEST, depth_test_);
+  glDepthMask(depth_mask_);
+  enable(GL_BLEND, blend_);
+  enable(GL_CULL_FACE, cull_);
+  enable(GL_SCISSOR_TEST, scissor_);
+}
+
+formula_runner::~formula_runner() {
+  for (auto& [name, program] : programs_) glDeleteProgram(program);
+}
+
+result<words> formula_runner::run(const formula& f, const words& args, std::size_t calls) {
+  auto it = programs_.find(f.name);
+  if (it == programs_.end()) {
+    glsl::source src;
+    glsl::add_formula_kernel(src, f);
+    auto program = make_compute_program(src, "dstrans eval " + f.name);
+    if (!program) return failure{program.error()};
+    it = programs_.emplace(f.name, *program).first;
+  }
+  words in;
+  in.reserve(args.size() + 1);
+  in.push_back(std::uint32_t(calls));
+  in.insert(in.end(), args.begin(), args.end());
+  const std::size_t out_words = calls * std::size_t(f.result.word_count());
+  GLuint buffers[2];
+  glCreateBuffers(2, buffers);
+  glNamedBufferStorage(buffers[0], GLsizeiptr(in.size() * 4), in.data(), 0);
+  glNamedBufferStorage(buffers[1], GLsizeiptr((out_words ? out_words : 1) * 4), nullptr, GL_MAP_READ_BIT);
+  {
+    state_guard keep;
+    glUseProgram(it->second);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
+    glDispatchCompute(GLuint((calls + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
+  words out(out_words);
+  if (out_words) glGetNamedBufferSubData(buffers[1], 0, GLsizeiptr(out_words * 4), out.data());
+  glDeleteBuffers(2, buffers);
+  return out;
+}
+
+}  // namespace dstrans::gl

@@ -1,0 +1,542 @@
+// Implements dstrans_vk.hpp.
+#include "dstrans_vk.hpp"
+
+#include <cstring>
+
+namespace dstrans::vk {
+
+namespace {
+
+std::uint64_t content_hash(const std::string& text, spirv::stage st) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  return (h ^ std::uint64_t(st)) * 1099511628211ull;
+}
+
+VkImageMemoryBarrier image_barrier(VkImage img, VkImageLayout from, VkImageLayout to, VkAccessFlags src,
+                                   VkAccessFlags dst, VkImageAspectFlags aspect) {
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.srcAccessMask = src;
+  b.dstAccessMask = dst;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = img;
+  b.subresourceRange = {aspect, 0, 1, 0, 1};
+  return b;
+}
+
+// Set 0 of a pipeline, from what its shaders declare.
+result<VkDescriptorSetLayout> set_layout_from(const context& ctx, const std::vector<const shader*>& stages) {
+  std::map<int, VkDescriptorSetLayoutBinding> bindings;
+  for (const shader* s : stages) {
+    const VkShaderStageFlags flag = s->stage == spirv::stage::vertex     ? VK_SHADER_STAGE_VERTEX_BIT
+                                    : s->stage == spirv::stage::fragment ? VK_SHADER_STAGE_FRAGMENT_BIT
+                                                                         : VK_SHADER_STAGE_COMPUTE_BIT;
+    auto add = [&](const std::vector<spirv::resource>& list, VkDescriptorType type) -> bool {
+      for (const auto& r : list) {
+        if (r.set != 0) return false;
+        auto& b = bindings[r.binding];
+        b.binding = std::uint32_t(r.binding);
+        b.descriptorType = type;
+        b.descriptorCount = 1;
+        b.stageFlags |= flag;
+      }
+      return true;
+    };
+    const auto& refl = s->reflection;
+    if (!add(refl.samplers, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) ||
+        !add(refl.uniform_buffers, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER) ||
+        !add(refl.storage_buffers, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) ||
+        !add(refl.storage_images, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE))
+      return failure{"dstrans pipelines bind everything in descriptor set 0"};
+  }
+  std::vector<VkDescriptorSetLayoutBinding> list;
+  for (auto& [binding, b] : bindings) list.push_back(b);
+  VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  ci.bindingCount = std::uint32_t(list.size());
+  ci.pBindings = list.data();
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  if (vkCreateDescriptorSetLayout(ctx.device, &ci, ctx.allocator, &layout) != VK_SUCCESS)
+    return failure{"cannot create a descriptor set layout"};
+  return layout;
+}
+
+}  // namespace
+
+result<std::unique_ptr<device>> device::create(const context& ctx) {
+  if (!ctx.device || !ctx.physical_device || !ctx.queue) return failure{"dstrans::vk::context needs a device and a queue"};
+  std::unique_ptr<device> d(new device(ctx));
+  VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pci.queueFamilyIndex = ctx.queue_family;
+  if (vkCreateCommandPool(ctx.device, &pci, ctx.allocator, &d->pool_) != VK_SUCCESS)
+    return failure{"cannot create a command pool"};
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = d->pool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  vkAllocateCommandBuffers(ctx.device, &ai, &d->cmd_);
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  vkCreateFence(ctx.device, &fci, ctx.allocator, &d->fence_);
+  VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qci.queryCount = 2;
+  vkCreateQueryPool(ctx.device, &qci, ctx.allocator, &d->timestamps_);
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(ctx.physical_device, &props);
+  d->timestamp_ns_ = double(props.limits.timestampPeriod);
+  if (ctx.debug_utils)
+    d->set_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+        vkGetInstanceProcAddr(ctx.instance, "vkSetDebugUtilsObjectNameEXT"));
+  d->begin_rendering_ = reinterpret_cast<PFN_vkCmdBeginRendering>(vkGetDeviceProcAddr(ctx.device, "vkCmdBeginRendering"));
+  d->end_rendering_ = reinterpret_cast<PFN_vkCmdEndRendering>(vkGetDeviceProcAddr(ctx.device, "vkCmdEndRendering"));
+  if (!d->begin_rendering_) {
+    d->begin_rendering_ = reinterpret_cast<PFN_vkCmdBeginRendering>(vkGetDeviceProcAddr(ctx.device, "vkCmdBeginRenderingKHR"));
+    d->end_rendering_ = reinterpret_cast<PFN_vkCmdEndRendering>(vkGetDeviceProcAddr(ctx.device, "vkCmdEndRenderingKHR"));
+  }
+  if (!d->begin_rendering_ || !d->end_rendering_)
+    return failure{"the device has no dynamic rendering (Vulkan 1.3, or VK_KHR_dynamic_rendering on 1.2)"};
+  d->name(VK_OBJECT_TYPE_COMMAND_POOL, std::uint64_t(d->pool_), "dstrans commands");
+  d->name(VK_OBJECT_TYPE_QUERY_POOL, std::uint64_t(d->timestamps_), "dstrans timestamps");
+  return d;
+}
+
+device::~device() {
+  for (auto& [n, p] : formula_pipelines_) destroy(p);
+  for (auto& [h, s] : shaders_) vkDestroyShaderModule(ctx_.device, s->module, ctx_.allocator);
+  if (timestamps_) vkDestroyQueryPool(ctx_.device, timestamps_, ctx_.allocator);
+  if (fence_) vkDestroyFence(ctx_.device, fence_, ctx_.allocator);
+  if (pool_) vkDestroyCommandPool(ctx_.device, pool_, ctx_.allocator);
+}
+
+void device::name(VkObjectType type, std::uint64_t handle, const std::string& text) {
+  if (!set_name_) return;
+  VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+  info.objectType = type;
+  info.objectHandle = handle;
+  info.pObjectName = text.c_str();
+  set_name_(ctx_.device, &info);
+}
+
+result<std::uint32_t> device::memory_type(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
+  VkPhysicalDeviceMemoryProperties mp;
+  vkGetPhysicalDeviceMemoryProperties(ctx_.physical_device, &mp);
+  for (std::uint32_t i = 0; i < mp.memoryTypeCount; ++i)
+    if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & flags) == flags) return i;
+  return failure{"no suitable memory type"};
+}
+
+result<image> device::make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
+                                 const std::string& label) {
+  image img;
+  img.format = fmt;
+  VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ci.imageType = VK_IMAGE_TYPE_2D;
+  ci.format = fmt;
+  ci.extent = {std::uint32_t(w), std::uint32_t(h), 1};
+  ci.mipLevels = ci.arrayLayers = 1;
+  ci.samples = VK_SAMPLE_COUNT_1_BIT;
+  ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ci.usage = usage;
+  ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  if (vkCreateImage(ctx_.device, &ci, ctx_.allocator, &img.handle) != VK_SUCCESS) return failure{label + ": cannot create the image"};
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(ctx_.device, img.handle, &req);
+  auto type = memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = type ? *type : 0u;
+  if (!type || vkAllocateMemory(ctx_.device, &ai, ctx_.allocator, &img.memory) != VK_SUCCESS) {
+    destroy(img);
+    return failure{label + ": cannot allocate the image's memory"};
+  }
+  vkBindImageMemory(ctx_.device, img.handle, img.memory, 0);
+  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vi.image = img.handle;
+  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vi.format = fmt;
+  vi.subresourceRange = {aspect, 0, 1, 0, 1};
+  vkCreateImageView(ctx_.device, &vi, ctx_.allocator, &img.view);
+  name(VK_OBJECT_TYPE_IMAGE, std::uint64_t(img.handle), label);
+  name(VK_OBJECT_TYPE_IMAGE_VIEW, std::uint64_t(img.view), label);
+  return img;
+}
+
+void device::destroy(image& i) {
+  if (i.view) vkDestroyImageView(ctx_.device, i.view, ctx_.allocator);
+  if (i.handle) vkDestroyImage(ctx_.device, i.handle, ctx_.allocator);
+  if (i.memory) vkFreeMemory(ctx_.device, i.memory, ctx_.allocator);
+  i = image{};
+}
+
+result<targets> device::make_targets(const std::vector<target_desc>& layout, int width, int height,
+                                     const std::string& label, bool with_depth) {
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(ctx_.physical_device, &props);
+  const int max_size = int(props.limits.maxImageDimension2D);
+  if (width < 1 || height < 1 || width > max_size || height > max_size)
+    return failure{label + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                   " is not a size this device can render (1 to " + std::to_string(max_size) + " a side)"};
+  if (layout.size() > props.limits.maxColorAttachments)
+    return failure{label + ": the layout has " + std::to_string(layout.size()) + " render targets; this device draws to " +
+                   std::to_string(props.limits.maxColorAttachments) + " at most"};
+  const VkFormatFeatureFlags need = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+  for (const target_desc& d : layout) {
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(ctx_.physical_device, VkFormat(info(d.fmt).vk_format), &fp);
+    if ((fp.optimalTilingFeatures & need) != need)
+      return failure{label + ": this device cannot render to " + info(d.fmt).name + " targets"};
+  }
+  targets t;
+  t.width = width;
+  t.height = height;
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  for (std::size_t i = 0; i < layout.size(); ++i) {
+    auto img = make_image(VkFormat(info(layout[i].fmt).vk_format), usage, VK_IMAGE_ASPECT_COLOR_BIT, width, height,
+                          label + " RT" + std::to_string(i) + " " + info(layout[i].fmt).name);
+    if (!img) {
+      destroy(t);
+      return failure{img.error()};
+    }
+    t.colors.push_back(*img);
+    t.formats.push_back(layout[i].fmt);
+  }
+  if (with_depth) {
+    auto img = make_image(VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                          VK_IMAGE_ASPECT_DEPTH_BIT, width, height, label + " depth");
+    if (!img) {
+      destroy(t);
+      return failure{img.error()};
+    }
+    t.depth = *img;
+  }
+  submit([&](VkCommandBuffer cmd) {
+    std::vector<VkImageMemoryBarrier> barriers;
+    for (const image& c : t.colors)
+      barriers.push_back(image_barrier(c.handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+                                       VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_ASPECT_COLOR_BIT));
+    if (t.depth.handle)
+      barriers.push_back(image_barrier(t.depth.handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+                                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_IMAGE_ASPECT_DEPTH_BIT));
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
+                         nullptr, std::uint32_t(barriers.size()), barriers.data());
+  });
+  return t;
+}
+
+void device::destroy(targets& t) {
+  for (image& c : t.colors) destroy(c);
+  destroy(t.depth);
+  t = targets{};
+}
+
+result<std::vector<texel>> device::read_texels(const targets& t, int index) {
+  const format f = t.formats[std::size_t(index)];
+  const std::size_t bpp = std::size_t(info(f).bytes_per_pixel), n = std::size_t(t.width) * std::size_t(t.height);
+  auto staging = make_buffer(VkDeviceSize(n * bpp), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "dstrans readback");
+  if (!staging) return failure{staging.error()};
+  std::vector<texel> out(n);
+  submit([&](VkCommandBuffer cmd) {
+    const VkImage img = t.colors[std::size_t(index)].handle;
+    VkImageMemoryBarrier before = image_barrier(img, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
+                                                VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                                                VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
+                         1, &before);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {std::uint32_t(t.width), std::uint32_t(t.height), 1};
+    vkCmdCopyImageToBuffer(cmd, img, VK_IMAGE_LAYOUT_GENERAL, staging->handle, 1, &region);
+    VkBufferMemoryBarrier to_host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+    to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    to_host.srcQueueFamilyIndex = to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    to_host.buffer = staging->handle;
+    to_host.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &to_host, 0,
+                         nullptr);
+  });
+  const auto* bytes = static_cast<const std::uint8_t*>(staging->mapped);
+  for (std::size_t i = 0; i < n; ++i) std::memcpy(out[i].data(), bytes + i * bpp, bpp);
+  destroy(*staging);
+  return out;
+}
+
+result<buffer> device::make_buffer(VkDeviceSize size, VkBufferUsageFlags usage, const std::string& label) {
+  buffer b;
+  b.size = size;
+  VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  ci.size = size ? size : 4;
+  ci.usage = usage;
+  if (vkCreateBuffer(ctx_.device, &ci, ctx_.allocator, &b.handle) != VK_SUCCESS) return failure{label + ": cannot create the buffer"};
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(ctx_.device, b.handle, &req);
+  auto type = memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = type ? *type : 0u;
+  if (!type || vkAllocateMemory(ctx_.device, &ai, ctx_.allocator, &b.memory) != VK_SUCCESS) {
+    destroy(b);
+    return failure{label + ": cannot allocate host-visible memory"};
+  }
+  vkBindBufferMemory(ctx_.device, b.handle, b.memory, 0);
+  vkMapMemory(ctx_.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped);
+  name(VK_OBJECT_TYPE_BUFFER, std::uint64_t(b.handle), label);
+  return b;
+}
+
+void device::destroy(buffer& b) {
+  if (b.handle) vkDestroyBuffer(ctx_.device, b.handle, ctx_.allocator);
+  if (b.memory) vkFreeMemory(ctx_.device, b.memory, ctx_.allocator);
+  b = buffer{};
+}
+
+result<const shader*> device::get_shader(const glsl::source& src, spirv::stage st, const std::string& label) {
+  const std::uint64_t key = content_hash(src.str(), st);
+  const auto it = shaders_.find(key);
+  if (it != shaders_.end()) return static_cast<const shader*>(it->second.get());
+  auto words = spirv::compile(src, st, spirv::api::vulkan);
+  if (!words) return failure{label + ": " + words.error()};
+  auto refl = spirv::reflect(*words);
+  if (!refl) return failure{label + ": " + refl.error()};
+  auto s = std::make_unique<shader>();
+  s->stage = st;
+  s->reflection = *refl;
+  VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  ci.codeSize = words->size() * 4;
+  ci.pCode = words->data();
+  if (vkCreateShaderModule(ctx_.device, &ci, ctx_.allocator, &s->module) != VK_SUCCESS)
+    return failure{label + ": cannot create the shader module"};
+  name(VK_OBJECT_TYPE_SHADER_MODULE, std::uint64_t(s->module), label);
+  const shader* out = s.get();
+  shaders_.emplace(key, std::move(s));
+  return out;
+}
+
+result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shader& fragment,
+                                                const std::vector<format>& color_formats, const std::string& label) {
+  // The fragment shader must write exactly the targets it is drawn into.
+  const auto& outs = fragment.reflection.outputs;
+  if (outs.size() != color_formats.size())
+    return failure{label + ": the fragment shader writes " + std::to_string(outs.size()) + " outputs but the pipeline draws into " +
+                   std::to_string(color_formats.size()) + " targets"};
+  for (std::size_t i = 0; i < outs.size(); ++i) {
+    if (outs[i].location != int(i) || outs[i].components != info(color_formats[i]).channels)
+      return failure{label + ": output '" + outs[i].name + "' (location " + std::to_string(outs[i].location) + ", " +
+                     std::to_string(outs[i].components) + " components) does not match target " + std::to_string(i) + " (" +
+                     info(color_formats[i]).name + ")"};
+  }
+  pipeline p;
+  auto set_layout = set_layout_from(ctx_, {&vertex, &fragment});
+  if (!set_layout) return failure{label + ": " + set_layout.error()};
+  p.set_layout = *set_layout;
+  VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  lci.setLayoutCount = 1;
+  lci.pSetLayouts = &p.set_layout;
+  vkCreatePipelineLayout(ctx_.device, &lci, ctx_.allocator, &p.layout);
+
+  VkPipelineShaderStageCreateInfo stages[2]{};
+  for (int i = 0; i < 2; ++i) {
+    stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stages[i].pName = "main";
+  }
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = vertex.module;
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = fragment.module;
+  VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  std::vector<VkPipelineColorBlendAttachmentState> blends(color_formats.size());
+  for (auto& b : blends)
+    b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blend.attachmentCount = std::uint32_t(blends.size());
+  blend.pAttachments = blends.data();
+  const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamic.dynamicStateCount = 2;
+  dynamic.pDynamicStates = dynamic_states;
+  std::vector<VkFormat> formats;
+  for (format f : color_formats) formats.push_back(VkFormat(info(f).vk_format));
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = std::uint32_t(formats.size());
+  rendering.pColorAttachmentFormats = formats.data();
+
+  VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  ci.pNext = &rendering;
+  ci.stageCount = 2;
+  ci.pStages = stages;
+  ci.pVertexInputState = &vertex_input;
+  ci.pInputAssemblyState = &assembly;
+  ci.pViewportState = &viewport;
+  ci.pRasterizationState = &raster;
+  ci.pMultisampleState = &multisample;
+  ci.pDepthStencilState = &depth;
+  ci.pColorBlendState = &blend;
+  ci.pDynamicState = &dynamic;
+  ci.layout = p.layout;
+  if (vkCreateGraphicsPipelines(ctx_.device, VK_NULL_HANDLE, 1, &ci, ctx_.allocator, &p.handle) != VK_SUCCESS) {
+    destroy(p);
+    return failure{label + ": cannot create the graphics pipeline"};
+  }
+  name(VK_OBJECT_TYPE_PIPELINE, std::uint64_t(p.handle), label);
+  return p;
+}
+
+result<pipeline> device::make_compute_pipeline(const shader& compute, const std::string& label) {
+  pipeline p;
+  auto set_layout = set_layout_from(ctx_, {&compute});
+  if (!set_layout) return failure{label + ": " + set_layout.error()};
+  p.set_layout = *set_layout;
+  VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  lci.setLayoutCount = 1;
+  lci.pSetLayouts = &p.set_layout;
+  vkCreatePipelineLayout(ctx_.device, &lci, ctx_.allocator, &p.layout);
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = compute.module;
+  ci.stage.pName = "main";
+  ci.layout = p.layout;
+  if (vkCreateComputePipelines(ctx_.device, VK_NULL_HANDLE, 1, &ci, ctx_.allocator, &p.handle) != VK_SUCCESS) {
+    destroy(p);
+    return failure{label + ": cannot create the compute pipeline"};
+  }
+  name(VK_OBJECT_TYPE_PIPELINE, std::uint64_t(p.handle), label);
+  return p;
+}
+
+void device::destroy(pipeline& p) {
+  if (p.handle) vkDestroyPipeline(ctx_.device, p.handle, ctx_.allocator);
+  if (p.layout) vkDestroyPipelineLayout(ctx_.device, p.layout, ctx_.allocator);
+  if (p.set_layout) vkDestroyDescriptorSetLayout(ctx_.device, p.set_layout, ctx_.allocator);
+  p = pipeline{};
+}
+
+double device::submit(const std::function<void(VkCommandBuffer)>& record) {
+  vkResetCommandBuffer(cmd_, 0);
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vkBeginCommandBuffer(cmd_, &bi);
+  vkCmdResetQueryPool(cmd_, timestamps_, 0, 2);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, 0);
+  record(cmd_);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_, 1);
+  vkEndCommandBuffer(cmd_);
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd_;
+  vkQueueSubmit(ctx_.queue, 1, &si, fence_);
+  vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, UINT64_MAX);
+  vkResetFences(ctx_.device, 1, &fence_);
+  std::uint64_t ticks[2] = {0, 0};
+  vkGetQueryPoolResults(ctx_.device, timestamps_, 0, 2, sizeof ticks, ticks, sizeof ticks[0],
+                        VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+  return double(ticks[1] - ticks[0]) * timestamp_ns_ * 1e-6;
+}
+
+void device::begin_rendering(VkCommandBuffer cmd, const targets& t, bool clear) {
+  std::vector<VkRenderingAttachmentInfo> colors;
+  for (const image& c : t.colors) {
+    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    a.imageView = c.view;
+    a.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+    a.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    colors.push_back(a);
+  }
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = t.depth.view;
+  depth.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+  depth.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, {std::uint32_t(t.width), std::uint32_t(t.height)}};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = std::uint32_t(colors.size());
+  ri.pColorAttachments = colors.data();
+  ri.pDepthAttachment = t.depth.view ? &depth : nullptr;
+  begin_rendering_(cmd, &ri);
+  const VkViewport vp{0.0f, float(t.height), float(t.width), -float(t.height), 0.0f, 1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+}
+
+void device::end_rendering(VkCommandBuffer cmd) { end_rendering_(cmd); }
+
+result<words> device::run_formula(const formula& f, const words& args, std::size_t calls) {
+  auto it = formula_pipelines_.find(f.name);
+  if (it == formula_pipelines_.end()) {
+    glsl::source src;
+    glsl::add_formula_kernel(src, f);
+    auto cs = get_shader(src, spirv::stage::compute, "dstrans eval " + f.name);
+    if (!cs) return failure{cs.error()};
+    auto p = make_compute_pipeline(**cs, "dstrans eval " + f.name);
+    if (!p) return failure{p.error()};
+    it = formula_pipelines_.emplace(f.name, *p).first;
+  }
+  const std::size_t out_words = calls * std::size_t(f.result.word_count());
+  auto in = make_buffer(VkDeviceSize((args.size() + 1) * 4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "dstrans eval in");
+  auto out = make_buffer(VkDeviceSize((out_words ? out_words : 1) * 4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "dstrans eval out");
+  if (!in || !out) return failure{in ? out.error() : in.error()};
+  auto* in_words = static_cast<std::uint32_t*>(in->mapped);
+  in_words[0] = std::uint32_t(calls);
+  if (!args.empty()) std::memcpy(in_words + 1, args.data(), args.size() * 4);
+
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pci.maxSets = 1;
+  pci.poolSizeCount = 1;
+  pci.pPoolSizes = &size;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  vkCreateDescriptorPool(ctx_.device, &pci, ctx_.allocator, &pool);
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &it->second.set_layout;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  vkAllocateDescriptorSets(ctx_.device, &ai, &set);
+  VkDescriptorBufferInfo infos[2] = {{in->handle, 0, VK_WHOLE_SIZE}, {out->handle, 0, VK_WHOLE_SIZE}};
+  VkWriteDescriptorSet writes[2]{};
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    writes[i].dstSet = set;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(ctx_.device, 2, writes, 0, nullptr);
+  submit([&](VkCommandBuffer cmd) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, it->second.handle);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, it->second.layout, 0, 1, &set, 0, nullptr);
+    vkCmdDispatch(cmd, std::uint32_t((calls + 63) / 64), 1, 1);
+    VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr,
+                         0, nullptr);
+  });
+  words result_words(out_words);
+  if (out_words) std::memcpy(result_words.data(), out->mapped, out_words * 4);
+  vkDestroyDescriptorPool(ctx_.device, pool, ctx_.allocator);
+  destroy(*in);
+  destroy(*out);
+  return result_words;
+}
+
+}  // namespace dstrans::vk

@@ -1,0 +1,148 @@
+// dstrans on Vulkan 1.2+ (dynamic rendering: core in 1.3, VK_KHR_dynamic_rendering in 1.2): the part an
+// engine copies unmodified (dstrans_vk.{hpp,cpp}, with backends/spirv/dstrans_spirv.{hpp,cpp}).
+//
+// Implements, on the engine's instance, device and queue (dstrans::vk::context):
+//   - images for a layout's targets (make_targets), read back as bytes (read_texels);
+//   - GLSL compiled to SPIR-V at run time by glslang, cached by content hash (get_shader);
+//   - graphics and compute pipelines whose descriptor layouts come from SPIRV-Cross reflection, checked
+//     against the layout the pipeline draws into before it is built (make_graphics_pipeline, make_compute_pipeline);
+//   - one-shot command submission with GPU timestamps (submit), debug names (name);
+//   - evaluation of a shared formula over many inputs in a compute shader (run_formula).
+//
+//   auto dev = dstrans::vk::device::create(ctx);   // ctx: the engine's VkInstance, VkDevice, queue, allocator
+//   auto gbuf = (*dev)->make_targets(dstrans::describe<dstrans::thesis_gbuffer>(), w, h, "gbuffer", true);
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <dstrans/formula.hpp>
+#include <dstrans/glsl.hpp>
+#include <dstrans/layout.hpp>
+#include <dstrans/result.hpp>
+#include <dstrans_spirv.hpp>
+
+namespace dstrans::vk {
+
+// The engine's Vulkan objects dstrans works with; the engine keeps ownership of all of them.
+struct context {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  std::uint32_t queue_family = 0;
+  const VkAllocationCallbacks* allocator = nullptr;
+  bool debug_utils = false;  // VK_EXT_debug_utils is enabled on the instance: dstrans names its objects
+};
+
+struct image {
+  VkImage handle = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+};
+
+// One image per layout target (usable as colour attachment, sampled image and copy source), an optional
+// D32 depth image, all in VK_IMAGE_LAYOUT_GENERAL after creation.
+struct targets {
+  std::vector<image> colors;
+  std::vector<format> formats;
+  image depth;
+  int width = 0, height = 0;
+};
+
+// A host-visible, coherent, persistently mapped buffer.
+struct buffer {
+  VkBuffer handle = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize size = 0;
+  void* mapped = nullptr;
+};
+
+struct shader {
+  VkShaderModule module = VK_NULL_HANDLE;
+  spirv::stage stage = spirv::stage::fragment;
+  spirv::reflection reflection;
+};
+
+// A pipeline with the set-0 descriptor layout its shaders declare.
+struct pipeline {
+  VkPipeline handle = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+};
+
+class device {
+ public:
+  // dstrans's objects on the engine's device: a command pool, a fence, a shader cache.
+  static result<std::unique_ptr<device>> create(const context& ctx);
+  ~device();
+  device(const device&) = delete;
+  device& operator=(const device&) = delete;
+
+  const context& ctx() const { return ctx_; }
+
+  // Images for `layout`; a failure names what the device cannot hold (too many targets, a format it
+  // cannot render to, a zero or oversized extent).
+  result<targets> make_targets(const std::vector<target_desc>& layout, int width, int height, const std::string& label,
+                               bool with_depth);
+  void destroy(targets& t);
+  // The bytes of target `index`, row by row from the top of the image.
+  result<std::vector<texel>> read_texels(const targets& t, int index);
+
+  result<buffer> make_buffer(VkDeviceSize size, VkBufferUsageFlags usage, const std::string& label);
+  void destroy(buffer& b);
+
+  // `src` as a shader module, compiled once per distinct text and stage; failures carry mapped positions.
+  result<const shader*> get_shader(const glsl::source& src, spirv::stage st, const std::string& label);
+
+  // A pipeline that draws `fragment` into images of `color_formats` (dynamic rendering), with no vertex
+  // input; fails before building when the fragment shader's outputs do not match the formats one to one
+  // (locations 0..n-1, one output per target, as many components as the format has channels).
+  result<pipeline> make_graphics_pipeline(const shader& vertex, const shader& fragment,
+                                          const std::vector<format>& color_formats, const std::string& label);
+  result<pipeline> make_compute_pipeline(const shader& compute, const std::string& label);
+  void destroy(pipeline& p);
+
+  // Records commands with `record`, submits them, waits, and returns the GPU time they took in ms.
+  double submit(const std::function<void(VkCommandBuffer)>& record);
+
+  // Starts dynamic rendering into all of `t` (cleared to 0 and depth 1, or loaded), with a viewport of
+  // negative height so that clip-space +y is the image's top row, as with GL's
+  // glClipControl(GL_UPPER_LEFT): one projection matrix serves both APIs.
+  void begin_rendering(VkCommandBuffer cmd, const targets& t, bool clear);
+  void end_rendering(VkCommandBuffer cmd);
+
+  // Names a Vulkan object for frame captures and validation messages (VK_EXT_debug_utils, when enabled).
+  void name(VkObjectType type, std::uint64_t handle, const std::string& text);
+
+  // The packed results of `calls` calls of `f`, whose packed arguments follow each other in `args`.
+  result<words> run_formula(const formula& f, const words& args, std::size_t calls);
+
+ private:
+  explicit device(const context& ctx) : ctx_(ctx) {}
+  result<std::uint32_t> memory_type(std::uint32_t bits, VkMemoryPropertyFlags flags) const;
+  result<image> make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
+                           const std::string& label);
+  void destroy(image& i);
+
+  context ctx_;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkQueryPool timestamps_ = VK_NULL_HANDLE;
+  double timestamp_ns_ = 1.0;
+  PFN_vkSetDebugUtilsObjectNameEXT set_name_ = nullptr;
+  PFN_vkCmdBeginRendering begin_rendering_ = nullptr;
+  PFN_vkCmdEndRendering end_rendering_ = nullptr;
+  std::map<std::uint64_t, std::unique_ptr<shader>> shaders_;
+  std::map<std::string, pipeline> formula_pipelines_;
+};
+
+}  // namespace dstrans::vk

@@ -1,0 +1,362 @@
+// Every shared formula, callable by name with values packed as 32-bit words: the CPU evaluates the C++
+// side of the shared text, and add_formula_kernel emits a compute shader that evaluates the GLSL side,
+// so a backend can run both over the same inputs (dstrans eval, and the CPU/GPU agreement tests).
+//
+//   const dstrans::formula* f = dstrans::find_formula("dst_rows_partner");
+//   dstrans::words in;                       // the arguments of one call, in order
+//   dstrans::put(glm::ivec2(3, 0), in);
+//   dstrans::put(glm::ivec2(8, 8), in);
+//   dstrans::words out = f->cpu(in);         // ivec2(3, 1), as 2 words
+//   dstrans::glsl::source cs;
+//   dstrans::glsl::add_formula_kernel(cs, *f);   // the same call on a GPU, over many inputs
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <tuple>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fullscreen.hpp"
+#include "glsl.hpp"
+#include "interlace.hpp"
+#include "surface.hpp"
+
+namespace dstrans {
+
+// A value as 32-bit words: floats by their bits, ints as two's complement, bools as 0 or 1, vectors by
+// component, records by member in declaration order.
+using words = std::vector<std::uint32_t>;
+
+enum class value_kind { float_, vec2, vec3, vec4, int_, ivec2, uint_, bool_, record };
+
+// The type of a formula's argument or result.
+struct value_type {
+  value_kind kind = value_kind::float_;
+  std::string record_name;                                // the GLSL struct, for records
+  std::vector<std::pair<std::string, value_type>> fields;  // the members, for records
+
+  // How many words a value of this type takes.
+  int word_count() const {
+    switch (kind) {
+      case value_kind::vec2: case value_kind::ivec2: return 2;
+      case value_kind::vec3: return 3;
+      case value_kind::vec4: return 4;
+      case value_kind::record: {
+        int n = 0;
+        for (const auto& f : fields) n += f.second.word_count();
+        return n;
+      }
+      default: return 1;
+    }
+  }
+  // The GLSL (and dstrans eval) name: float, vec3, ivec2, uint, bool, or the struct's name.
+  std::string name() const {
+    static const char* const names[] = {"float", "vec2", "vec3", "vec4", "int", "ivec2", "uint", "bool"};
+    return kind == value_kind::record ? record_name : names[int(kind)];
+  }
+  // Whether values are floating point (compared within a tolerance) rather than exact.
+  bool is_float() const { return kind <= value_kind::vec4; }
+};
+
+template <class T>
+struct value_traits;
+
+namespace detail {
+inline std::uint32_t float_bits(float v) {
+  std::uint32_t w;
+  std::memcpy(&w, &v, 4);
+  return w;
+}
+inline float bits_float(std::uint32_t w) {
+  float v;
+  std::memcpy(&v, &w, 4);
+  return v;
+}
+}  // namespace detail
+
+template <>
+struct value_traits<float> {
+  static value_type type() { return {value_kind::float_, {}, {}}; }
+  static void put(float v, words& w) { w.push_back(detail::float_bits(v)); }
+  static float get(const std::uint32_t*& p) { return detail::bits_float(*p++); }
+};
+template <>
+struct value_traits<int> {
+  static value_type type() { return {value_kind::int_, {}, {}}; }
+  static void put(int v, words& w) { w.push_back(std::uint32_t(v)); }
+  static int get(const std::uint32_t*& p) { return int(*p++); }
+};
+template <>
+struct value_traits<unsigned> {
+  static value_type type() { return {value_kind::uint_, {}, {}}; }
+  static void put(unsigned v, words& w) { w.push_back(v); }
+  static unsigned get(const std::uint32_t*& p) { return *p++; }
+};
+template <>
+struct value_traits<bool> {
+  static value_type type() { return {value_kind::bool_, {}, {}}; }
+  static void put(bool v, words& w) { w.push_back(v ? 1u : 0u); }
+  static bool get(const std::uint32_t*& p) { return *p++ != 0u; }
+};
+template <glm::length_t L, class T>
+struct value_traits<glm::vec<L, T>> {
+  static value_type type() {
+    if constexpr (std::is_same_v<T, int>) {
+      static_assert(L == 2, "dstrans formulas take ivec2 as their only integer vector");
+      return {value_kind::ivec2, {}, {}};
+    } else {
+      return {L == 2 ? value_kind::vec2 : L == 3 ? value_kind::vec3 : value_kind::vec4, {}, {}};
+    }
+  }
+  static void put(const glm::vec<L, T>& v, words& w) {
+    for (glm::length_t i = 0; i < L; ++i) value_traits<T>::put(v[i], w);
+  }
+  static glm::vec<L, T> get(const std::uint32_t*& p) {
+    glm::vec<L, T> v;
+    for (glm::length_t i = 0; i < L; ++i) v[i] = value_traits<T>::get(p);
+    return v;
+  }
+};
+
+// Records are described by visiting their members in declaration order, once for all three uses.
+template <class Record>
+struct record_traits {
+  template <class R, class Visit>
+  static void members(R& r, Visit&& visit);
+};
+template <>
+template <class R, class Visit>
+void record_traits<surface>::members(R& r, Visit&& visit) {
+  visit("diffuse", r.diffuse);
+  visit("alpha", r.alpha);
+  visit("normal", r.normal);
+  visit("spec_intensity", r.spec_intensity);
+  visit("spec_power", r.spec_power);
+  visit("depth", r.depth);
+}
+template <>
+template <class R, class Visit>
+void record_traits<light_sample>::members(R& r, Visit&& visit) {
+  visit("light", r.light);
+  visit("specular", r.specular);
+}
+
+namespace detail {
+template <class R>
+struct record_value_traits {
+  static value_type type() {
+    value_type t{value_kind::record, record_name(), {}};
+    R r{};
+    record_traits<R>::members(r, [&](const char* n, auto& m) {
+      t.fields.emplace_back(n, value_traits<std::decay_t<decltype(m)>>::type());
+    });
+    return t;
+  }
+  static void put(const R& r, words& w) {
+    record_traits<R>::members(r, [&](const char*, const auto& m) { value_traits<std::decay_t<decltype(m)>>::put(m, w); });
+  }
+  static R get(const std::uint32_t*& p) {
+    R r{};
+    record_traits<R>::members(r, [&](const char*, auto& m) { m = value_traits<std::decay_t<decltype(m)>>::get(p); });
+    return r;
+  }
+  static std::string record_name();
+};
+template <>
+inline std::string record_value_traits<surface>::record_name() { return text::dst_surface.name; }
+template <>
+inline std::string record_value_traits<light_sample>::record_name() { return text::dst_light_sample.name; }
+}  // namespace detail
+
+template <>
+struct value_traits<surface> : detail::record_value_traits<surface> {};
+template <>
+struct value_traits<light_sample> : detail::record_value_traits<light_sample> {};
+
+// Appends value `v` to `w`.
+template <class T>
+void put(const T& v, words& w) {
+  value_traits<T>::put(v, w);
+}
+
+// A shared function that dstrans eval and the agreement tests can call.
+struct formula {
+  std::string name;           // the function's name in C++ and GLSL
+  const shared_text* block;   // the shared block that defines it
+  std::vector<std::pair<std::string, value_type>> args;
+  value_type result;
+  std::function<words(const words&)> cpu;  // one call: the packed arguments in, the packed result out
+};
+
+namespace detail {
+// The parameter names of function `fn` in shared code `code`, in order.
+inline std::vector<std::string> parameter_names(const std::string& code, const std::string& fn) {
+  std::size_t at = 0;
+  while ((at = code.find(fn + "(", at)) != std::string::npos) {
+    const bool starts_word = at > 0 && code[at - 1] == ' ';
+    if (starts_word) break;
+    at += fn.size();
+  }
+  std::vector<std::string> names;
+  if (at == std::string::npos) return names;
+  const std::size_t open = at + fn.size(), close = code.find(')', open);
+  std::string params = code.substr(open + 1, close - open - 1) + ",";
+  std::size_t start = 0, comma;
+  while ((comma = params.find(',', start)) != std::string::npos) {
+    std::string p = params.substr(start, comma - start);
+    while (!p.empty() && (p.back() == ' ' || p.back() == ')')) p.pop_back();
+    const std::size_t space = p.find_last_of(" )");
+    if (!p.empty()) names.push_back(space == std::string::npos ? p : p.substr(space + 1));
+    start = comma + 1;
+  }
+  return names;
+}
+
+template <class R, class... A, std::size_t... I>
+formula make_formula(const shared_text& block, const char* name, R (*fn)(A...), std::index_sequence<I...>) {
+  formula f{name, &block, {}, value_traits<R>::type(), {}};
+  const std::vector<std::string> names = parameter_names(block.code, name);
+  const value_type types[] = {value_traits<std::decay_t<A>>::type()..., value_traits<R>::type()};
+  for (std::size_t i = 0; i < sizeof...(A); ++i) f.args.emplace_back(i < names.size() ? names[i] : "?", types[i]);
+  f.cpu = [fn](const words& in) {
+    [[maybe_unused]] const std::uint32_t* p = in.data();
+    // Braced initialisation evaluates the arguments left to right, as they are packed.
+    [[maybe_unused]] std::tuple<std::decay_t<A>...> a{value_traits<std::decay_t<A>>::get(p)...};
+    words out;
+    put(fn(std::get<I>(a)...), out);
+    return out;
+  };
+  return f;
+}
+}  // namespace detail
+
+// Formula `fn` of shared block `block`; argument names and types come from the one text and signature.
+template <class R, class... A>
+formula make_formula(const shared_text& block, const char* name, R (*fn)(A...)) {
+  return detail::make_formula(block, name, fn, std::index_sequence_for<A...>{});
+}
+
+#define DSTRANS_FORMULA(block, fn) ::dstrans::make_formula(::dstrans::text::block, #fn, &::dstrans::shader::fn)
+
+// Every shared formula of the core. A formula added to a shared block is added here too (a test fails
+// until it is).
+inline const std::vector<formula>& formulas() {
+  static const std::vector<formula> all{
+      DSTRANS_FORMULA(dst_surface, dst_surface_zero),
+      DSTRANS_FORMULA(dst_light_sample, dst_light_sample_zero),
+      DSTRANS_FORMULA(dst_normal_unorm, dst_encode_normal),
+      DSTRANS_FORMULA(dst_normal_unorm, dst_decode_normal),
+      DSTRANS_FORMULA(dst_spec_power_unorm, dst_encode_spec_power),
+      DSTRANS_FORMULA(dst_spec_power_unorm, dst_decode_spec_power),
+      DSTRANS_FORMULA(dst_interlace_rows, dst_rows_keep),
+      DSTRANS_FORMULA(dst_interlace_rows, dst_rows_partner),
+      DSTRANS_FORMULA(dst_interlace_columns, dst_columns_keep),
+      DSTRANS_FORMULA(dst_interlace_columns, dst_columns_partner),
+      DSTRANS_FORMULA(dst_interlace_checker, dst_checker_keep),
+      DSTRANS_FORMULA(dst_interlace_checker, dst_checker_partner),
+      DSTRANS_FORMULA(dst_interlace_none, dst_none_keep),
+      DSTRANS_FORMULA(dst_interlace_none, dst_none_partner),
+      DSTRANS_FORMULA(dst_fullscreen, dst_fullscreen_position),
+  };
+  return all;
+}
+
+// The packed results of `calls` calls of `f` on the CPU, whose packed arguments follow each other in
+// `args` (the same contract as the backends' GPU runners).
+inline words run_cpu(const formula& f, const words& args, std::size_t calls) {
+  std::size_t in_words = 0;
+  for (const auto& a : f.args) in_words += std::size_t(a.second.word_count());
+  words out;
+  out.reserve(calls * std::size_t(f.result.word_count()));
+  for (std::size_t i = 0; i < calls; ++i) {
+    const words one(args.begin() + long(i * in_words), args.begin() + long((i + 1) * in_words));
+    const words r = f.cpu(one);
+    out.insert(out.end(), r.begin(), r.end());
+  }
+  return out;
+}
+
+// The formula called `name`, or nullptr.
+inline const formula* find_formula(const std::string& name) {
+  for (const formula& f : formulas())
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+namespace glsl {
+
+namespace detail {
+// GLSL that reads a value of type t from dst_in[at...] into `to`, advancing `at`.
+inline void load(const value_type& t, const std::string& to, int& at, std::string& code) {
+  auto word = [&](int k) { return "dst_in[base + " + std::to_string(at + k) + "u]"; };
+  switch (t.kind) {
+    case value_kind::record:
+      for (const auto& f : t.fields) load(f.second, to + "." + f.first, at, code);
+      return;
+    case value_kind::int_: code += "  " + to + " = int(" + word(0) + ");\n"; break;
+    case value_kind::uint_: code += "  " + to + " = " + word(0) + ";\n"; break;
+    case value_kind::bool_: code += "  " + to + " = " + word(0) + " != 0u;\n"; break;
+    case value_kind::ivec2: code += "  " + to + " = ivec2(int(" + word(0) + "), int(" + word(1) + "));\n"; break;
+    default: {
+      std::string parts;
+      for (int k = 0; k < t.word_count(); ++k) parts += (k ? ", " : "") + ("uintBitsToFloat(" + word(k) + ")");
+      code += "  " + to + " = " + t.name() + "(" + parts + ");\n";
+    }
+  }
+  at += t.word_count();
+}
+// GLSL that writes value `from` of type t to dst_out[at...], advancing `at`.
+inline void store(const value_type& t, const std::string& from, int& at, std::string& code) {
+  auto word = [&](int k) { return "  dst_out[outbase + " + std::to_string(at + k) + "u] = "; };
+  static const char* const comp[] = {".x", ".y", ".z", ".w"};
+  switch (t.kind) {
+    case value_kind::record:
+      for (const auto& f : t.fields) store(f.second, from + "." + f.first, at, code);
+      return;
+    case value_kind::int_: code += word(0) + "uint(" + from + ");\n"; break;
+    case value_kind::uint_: code += word(0) + from + ";\n"; break;
+    case value_kind::bool_: code += word(0) + from + " ? 1u : 0u;\n"; break;
+    case value_kind::ivec2:
+      for (int k = 0; k < 2; ++k) code += word(k) + "uint(" + from + comp[k] + ");\n";
+      break;
+    case value_kind::float_: code += word(0) + "floatBitsToUint(" + from + ");\n"; break;
+    default:
+      for (int k = 0; k < t.word_count(); ++k) code += word(k) + "floatBitsToUint(" + from + comp[k] + ");\n";
+  }
+  at += t.word_count();
+}
+}  // namespace detail
+
+// A compute shader (64 invocations a group) that calls formula f once per input. Buffer `in_binding`
+// holds the call count in word 0, then each call's packed arguments; buffer `out_binding` receives each
+// call's packed result.
+inline void add_formula_kernel(source& src, const formula& f, int in_binding = 0, int out_binding = 1) {
+  src.add_shared(*f.block);
+  int in_words = 0, out_words = f.result.word_count();
+  for (const auto& a : f.args) in_words += a.second.word_count();
+  std::string code = "layout(local_size_x = 64) in;\n";
+  code += "layout(std430, binding = " + std::to_string(in_binding) + ") readonly buffer dst_eval_in { uint dst_in[]; };\n";
+  code += "layout(std430, binding = " + std::to_string(out_binding) + ") writeonly buffer dst_eval_out { uint dst_out[]; };\n";
+  code += "void main() {\n  uint i = gl_GlobalInvocationID.x;\n  if (i >= dst_in[0]) return;\n";
+  code += "  uint base = 1u + i * " + std::to_string(in_words) + "u;\n";
+  code += "  uint outbase = i * " + std::to_string(out_words) + "u;\n";
+  int at = 0;
+  std::string call;
+  for (std::size_t k = 0; k < f.args.size(); ++k) {
+    const std::string a = "a" + std::to_string(k);
+    code += "  " + f.args[k].second.name() + " " + a + ";\n";
+    detail::load(f.args[k].second, a, at, code);
+    call += (k ? ", " : "") + a;
+  }
+  code += "  " + f.result.name() + " r = " + f.name + "(" + call + ");\n";
+  at = 0;
+  detail::store(f.result, "r", at, code);
+  code += "}\n";
+  src.add(code, __FILE__, __LINE__);
+}
+
+}  // namespace glsl
+}  // namespace dstrans
