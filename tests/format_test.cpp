@@ -168,3 +168,55 @@ TEST_CASE("quantize is what a shader reads back", "[format]") {
   CHECK(quantize(format::r32f, {0.1f, 0.0f, 0.0f, 0.0f}).x == 0.1f);
   CHECK(quantize(format::rgb10a2, {0.0f, 0.0f, 0.0f, 0.5f}).w == 2.0f / 3.0f);
 }
+
+TEST_CASE("permitted accepts either neighbouring code and nothing further", "[format]") {
+  // 0.236 * 1023 = 241.52: 241 and 242 are both within the rules; 240 and 243 are not.
+  const glm::vec4 v{0.236088976f, 0.0f, 1.0f, 0.5f};
+  auto with_red = [&](std::uint32_t red) {
+    const std::uint32_t word = red | (1023u << 20) | (2u << 30);
+    texel t{};
+    for (int i = 0; i < 4; ++i) t[std::size_t(i)] = std::uint8_t(word >> (8 * i));
+    return t;
+  };
+  CHECK(permitted(format::rgb10a2, v, with_red(241)));
+  CHECK(permitted(format::rgb10a2, v, with_red(242)));
+  CHECK_FALSE(permitted(format::rgb10a2, v, with_red(240)));
+  CHECK_FALSE(permitted(format::rgb10a2, v, with_red(243)));
+  CHECK(permitted(format::rgb10a2, v, encode(format::rgb10a2, v)));
+  // Exact products allow only their integer; NaN must store 0; out of range clamps.
+  CHECK_FALSE(permitted(format::rgba8, {1.0f, 0, 0, 0}, encode(format::rgba8, {254.0f / 255.0f, 0, 0, 0})));
+  CHECK_FALSE(permitted(format::rgb10a2, {0.0f, 0.5f, 0.25f, 1.0f / 3.0f}, encode(format::rgb10a2, {0.0f, 0.5f, 0.25f, 0.0f})));
+  CHECK_FALSE(permitted(format::rgba8, {128.0f / 255.0f, 0, 0, 0}, encode(format::rgba8, {127.0f / 255.0f, 0, 0, 0})));
+  CHECK(permitted(format::rgba8, {nan_f, 2.0f, -1.0f, 0.0f}, encode(format::rgba8, {0.0f, 1.0f, 0.0f, 0.0f})));
+  CHECK_FALSE(permitted(format::rgba8, {nan_f, 0, 0, 0}, encode(format::rgba8, {1.0f / 255.0f, 0, 0, 0})));
+
+  // Halves: round-to-nearest and round-toward-zero neighbours pass, a half two steps away does not.
+  const float x = 0.932557344f;  // between halves 0x3b75 and 0x3b76
+  auto half_texel = [](std::uint16_t h) {
+    texel t{};
+    t[0] = std::uint8_t(h);
+    t[1] = std::uint8_t(h >> 8);
+    return t;
+  };
+  CHECK(permitted(format::r16f, {x, 0, 0, 0}, half_texel(0x3b76)));
+  CHECK(permitted(format::r16f, {x, 0, 0, 0}, half_texel(0x3b75)));
+  CHECK_FALSE(permitted(format::r16f, {x, 0, 0, 0}, half_texel(0x3b74)));
+  CHECK(permitted(format::r16f, {70000.0f, 0, 0, 0}, half_texel(0x7bff)));  // largest finite
+  CHECK(permitted(format::r16f, {70000.0f, 0, 0, 0}, half_texel(0x7c00)));  // or infinity
+  CHECK(permitted(format::r16f, {-1e-8f, 0, 0, 0}, half_texel(0x8000)));
+  CHECK(permitted(format::r16f, {nan_f, 0, 0, 0}, half_texel(0x7e00)));
+  CHECK_FALSE(permitted(format::r16f, {1.0f, 0, 0, 0}, half_texel(0x3c01)));
+  // 32-bit floats must be exact, except for a NaN's payload.
+  CHECK(permitted(format::r32f, {0.1f, 0, 0, 0}, encode(format::r32f, {0.1f, 0, 0, 0})));
+  CHECK_FALSE(permitted(format::r32f, {0.1f, 0, 0, 0}, encode(format::r32f, {std::nextafter(0.1f, 1.0f), 0, 0, 0})));
+  CHECK(permitted(format::r32f, {nan_f, 0, 0, 0}, encode(format::r32f, {bits_to_float(0x7fc01234u), 0, 0, 0})));
+
+  // Every value's own encoding is permitted.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> d(-0.5f, 1.5f);
+  for (int i = 0; i < 20000; ++i)
+    for (format f : all_formats) {
+      const glm::vec4 w{d(rng), d(rng), d(rng), d(rng)};
+      REQUIRE(permitted(f, w, encode(f, w)));
+    }
+}

@@ -73,8 +73,8 @@ result<targets> make_targets(const std::vector<target_desc>& layout, int width, 
                    " is not a size this device can render (1 to " + std::to_string(max_size) + " a side)"};
   const int limit = max_draw < max_attach ? max_draw : max_attach;
   if (int(layout.size()) > limit)
-    return failure{label_text + ": the layout has " + std::to_string(layout.size()) + " render targets; this device draws to " +
-                   std::to_string(limit) + " at most"};
+    return failure{label_text + ": the layout has " + std::to_string(layout.size()) + " render targets; this device draws to at most " +
+                   std::to_string(limit)};
   for (const target_desc& d : layout) {
     GLint renderable = GL_NONE;
     glGetInternalformativ(GL_TEXTURE_2D, info(d.fmt).gl_internal_format, GL_FRAMEBUFFER_RENDERABLE, 1, &renderable);

@@ -179,8 +179,8 @@ result<targets> device::make_targets(const std::vector<target_desc>& layout, int
     return failure{label + ": " + std::to_string(width) + "x" + std::to_string(height) +
                    " is not a size this device can render (1 to " + std::to_string(max_size) + " a side)"};
   if (layout.size() > props.limits.maxColorAttachments)
-    return failure{label + ": the layout has " + std::to_string(layout.size()) + " render targets; this device draws to " +
-                   std::to_string(props.limits.maxColorAttachments) + " at most"};
+    return failure{label + ": the layout has " + std::to_string(layout.size()) + " render targets; this device draws to at most " +
+                   std::to_string(props.limits.maxColorAttachments)};
   const VkFormatFeatureFlags need = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
   for (const target_desc& d : layout) {
     VkFormatProperties fp;
@@ -240,7 +240,8 @@ result<std::vector<texel>> device::read_texels(const targets& t, int index) {
   std::vector<texel> out(n);
   submit([&](VkCommandBuffer cmd) {
     const VkImage img = t.colors[std::size_t(index)].handle;
-    VkImageMemoryBarrier before = image_barrier(img, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
+    // Copies want TRANSFER_SRC_OPTIMAL; the image returns to GENERAL, where dstrans keeps it.
+    VkImageMemoryBarrier before = image_barrier(img, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                                 VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT,
                                                 VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
@@ -248,7 +249,11 @@ result<std::vector<texel>> device::read_texels(const targets& t, int index) {
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {std::uint32_t(t.width), std::uint32_t(t.height), 1};
-    vkCmdCopyImageToBuffer(cmd, img, VK_IMAGE_LAYOUT_GENERAL, staging->handle, 1, &region);
+    vkCmdCopyImageToBuffer(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging->handle, 1, &region);
+    VkImageMemoryBarrier after = image_barrier(img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                                               VK_ACCESS_TRANSFER_READ_BIT, 0, VK_IMAGE_ASPECT_COLOR_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr,
+                         1, &after);
     VkBufferMemoryBarrier to_host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
     to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;

@@ -6,17 +6,21 @@
 //   static_assert(info(format::rgba16f).bytes_per_pixel == 8);
 //
 // The conversions follow the OpenGL 4.5 (2.3.5) and Vulkan ("Fixed-Point Data Conversions",
-// "Floating-Point Format Conversions") rules. Where those rules leave a choice, dstrans takes the one
-// IEEE hardware takes by default and says so:
-// - UNORM with b bits: the value is clamped to [0, 1] and multiplied by 2^b - 1 exactly, then rounded to
-//   the nearest integer; an exact tie (never produced by a value on the k/(2^b-1) grid) rounds to even.
-//   NaN stores 0 (Vulkan and D3D require it; GL leaves it open). Reading gives c / (2^b - 1), rounded
-//   once to float.
-// - 16-bit float: round to nearest even; magnitudes from 65520 up become infinity (the IEEE result;
-//   Vulkan also allows the largest finite half); subnormal halves are kept, not flushed; NaN stays a
-//   quiet NaN with its sign; infinities stay infinities.
-// - 32-bit float: stored as is, NaN payloads included.
+// "Floating-Point Format Conversions") rules. Those rules let a GPU store either of two neighbouring
+// codes for a value between them; encode() takes the one the specs prefer (the nearest) and
+// permitted() says whether bytes a GPU stored are within the rules:
+// - UNORM with b bits: the value is clamped to [0, 1] and multiplied by 2^b - 1 exactly; the code is the
+//   nearest integer (an exact tie rounds to even), and the rules permit either integer next to the
+//   product (exactly it when it is an integer). NaN stores 0, as D3D requires and Mesa does. Reading
+//   gives c / (2^b - 1), rounded once to float.
+// - 16-bit float: encode() rounds to nearest even, magnitudes from 65520 up become infinity, subnormal
+//   halves are kept, NaN stays a quiet NaN with its sign; the rules permit either neighbouring half
+//   (Mesa's llvmpipe rounds toward zero), and past the largest finite half either it or infinity.
+// - 32-bit float: stored as is; a GPU may change a NaN's payload.
 // - Reading a format with fewer than four channels fills G and B with 0 and A with 1.
+// Taken literally, the rules even permit code k+1 for the float nearest k/(2^b-1), whose exact product
+// lies a hair above k; GPUs (Mesa included) return k, so a G-buffer that is written, read and written
+// again keeps its bytes, and dstrans's tests require that bit for bit.
 #pragma once
 
 #include <array>
@@ -163,6 +167,55 @@ inline glm::vec4 decode(format f, const texel& t) {
     }
   }
   return v;
+}
+
+namespace detail {
+// Halves ordered by value (+0 and -0 alike), so that a step of 1 reaches the next half.
+inline int half_order(std::uint16_t h) { return (h & 0x8000u) ? -int(h & 0x7fffu) : int(h & 0x7fffu); }
+inline std::uint16_t half_from_order(int k) { return std::uint16_t(k < 0 ? 0x8000u | std::uint32_t(-k) : std::uint32_t(k)); }
+
+inline bool unorm_permitted(float v, std::uint32_t code, int bits) {
+  if (std::isnan(v)) return code == 0u;
+  const double r = (v < 0.0f ? 0.0 : v > 1.0f ? 1.0 : double(v)) * double((1u << bits) - 1u);
+  return code == std::uint32_t(std::floor(r)) || code == std::uint32_t(std::ceil(r));
+}
+
+inline bool half_permitted(float v, std::uint16_t h) {
+  const float s = half_decode(h);
+  if (std::isnan(v)) return std::isnan(s);
+  if (std::isnan(s)) return false;
+  if (s == v) return true;
+  // v must lie strictly between the stored half and the next half towards v.
+  const int k = half_order(h) + (v > s ? 1 : -1);
+  if (k > 0x7c00 || k < -0x7c00) return false;
+  const float next = half_decode(half_from_order(k));
+  return (v > s && v < next) || (v < s && v > next);
+}
+}  // namespace detail
+
+// Whether bytes `stored` are a result the GL and Vulkan rules permit for a shader writing `v` to a
+// target of format `f` (see the top of this header).
+inline bool permitted(format f, glm::vec4 v, const texel& stored) {
+  const format_info fi = info(f);
+  if (f == format::rgb10a2) {
+    std::uint32_t word = 0;
+    for (int i = 0; i < 4; ++i) word |= std::uint32_t(stored[std::size_t(i)]) << (8 * i);
+    return detail::unorm_permitted(v.x, word & 0x3ffu, 10) && detail::unorm_permitted(v.y, (word >> 10) & 0x3ffu, 10) &&
+           detail::unorm_permitted(v.z, (word >> 20) & 0x3ffu, 10) && detail::unorm_permitted(v.w, word >> 30, 2);
+  }
+  for (int c = 0; c < fi.channels; ++c) {
+    const std::size_t i = std::size_t(c);
+    if (fi.kind == channel_kind::unorm) {
+      if (!detail::unorm_permitted(v[c], stored[i], 8)) return false;
+    } else if (fi.bits[i] == 16) {
+      if (!detail::half_permitted(v[c], std::uint16_t(stored[2 * i] | (stored[2 * i + 1] << 8)))) return false;
+    } else {
+      float s;
+      std::memcpy(&s, &stored[4 * i], 4);
+      if (std::isnan(v[c]) ? !std::isnan(s) : std::memcmp(&s, &v[c], 4) != 0) return false;
+    }
+  }
+  return true;
 }
 
 // What a shader reads back after writing `v` to a target of format `f`.

@@ -195,23 +195,26 @@ namespace detail {
 // The parameter names of function `fn` in shared code `code`, in order.
 inline std::vector<std::string> parameter_names(const std::string& code, const std::string& fn) {
   std::size_t at = 0;
-  while ((at = code.find(fn + "(", at)) != std::string::npos) {
-    const bool starts_word = at > 0 && code[at - 1] == ' ';
-    if (starts_word) break;
-    at += fn.size();
-  }
+  while ((at = code.find(fn + "(", at)) != std::string::npos && !(at > 0 && code[at - 1] == ' ')) at += fn.size();
   std::vector<std::string> names;
   if (at == std::string::npos) return names;
-  const std::size_t open = at + fn.size(), close = code.find(')', open);
-  std::string params = code.substr(open + 1, close - open - 1) + ",";
-  std::size_t start = 0, comma;
-  while ((comma = params.find(',', start)) != std::string::npos) {
-    std::string p = params.substr(start, comma - start);
-    while (!p.empty() && (p.back() == ' ' || p.back() == ')')) p.pop_back();
-    const std::size_t space = p.find_last_of(" )");
-    if (!p.empty()) names.push_back(space == std::string::npos ? p : p.substr(space + 1));
-    start = comma + 1;
+  // Split the parameter list at its top-level commas; a parameter's name is its last word.
+  std::string param;
+  auto finish = [&] {
+    while (!param.empty() && param.back() == ' ') param.pop_back();
+    const std::size_t space = param.find_last_of(" )");
+    if (!param.empty()) names.push_back(space == std::string::npos ? param : param.substr(space + 1));
+    param.clear();
+  };
+  int depth = 0;
+  for (std::size_t i = at + fn.size() + 1; i < code.size(); ++i) {
+    const char c = code[i];
+    if (c == '(') ++depth;
+    if (c == ')' && depth-- == 0) break;
+    if (c == ',' && depth == 0) finish();
+    else param += c;
   }
+  finish();
   return names;
 }
 
@@ -288,13 +291,13 @@ inline const formula* find_formula(const std::string& name) {
 
 namespace glsl {
 
-namespace detail {
-// GLSL that reads a value of type t from dst_in[at...] into `to`, advancing `at`.
-inline void load(const value_type& t, const std::string& to, int& at, std::string& code) {
+// GLSL statements that unpack a value of type t from the words dst_in[base + at], ... into variable `to`,
+// advancing `at`; the shader declares `uint dst_in[]` and `uint base`.
+inline void load_value(const value_type& t, const std::string& to, int& at, std::string& code) {
   auto word = [&](int k) { return "dst_in[base + " + std::to_string(at + k) + "u]"; };
   switch (t.kind) {
     case value_kind::record:
-      for (const auto& f : t.fields) load(f.second, to + "." + f.first, at, code);
+      for (const auto& f : t.fields) load_value(f.second, to + "." + f.first, at, code);
       return;
     case value_kind::int_: code += "  " + to + " = int(" + word(0) + ");\n"; break;
     case value_kind::uint_: code += "  " + to + " = " + word(0) + ";\n"; break;
@@ -308,13 +311,14 @@ inline void load(const value_type& t, const std::string& to, int& at, std::strin
   }
   at += t.word_count();
 }
-// GLSL that writes value `from` of type t to dst_out[at...], advancing `at`.
-inline void store(const value_type& t, const std::string& from, int& at, std::string& code) {
+// GLSL statements that pack value `from` of type t into dst_out[outbase + at], ..., advancing `at`; the
+// shader declares `uint dst_out[]` and `uint outbase`.
+inline void store_value(const value_type& t, const std::string& from, int& at, std::string& code) {
   auto word = [&](int k) { return "  dst_out[outbase + " + std::to_string(at + k) + "u] = "; };
   static const char* const comp[] = {".x", ".y", ".z", ".w"};
   switch (t.kind) {
     case value_kind::record:
-      for (const auto& f : t.fields) store(f.second, from + "." + f.first, at, code);
+      for (const auto& f : t.fields) store_value(f.second, from + "." + f.first, at, code);
       return;
     case value_kind::int_: code += word(0) + "uint(" + from + ");\n"; break;
     case value_kind::uint_: code += word(0) + from + ";\n"; break;
@@ -328,7 +332,6 @@ inline void store(const value_type& t, const std::string& from, int& at, std::st
   }
   at += t.word_count();
 }
-}  // namespace detail
 
 // A compute shader (64 invocations a group) that calls formula f once per input. Buffer `in_binding`
 // holds the call count in word 0, then each call's packed arguments; buffer `out_binding` receives each
@@ -348,12 +351,12 @@ inline void add_formula_kernel(source& src, const formula& f, int in_binding = 0
   for (std::size_t k = 0; k < f.args.size(); ++k) {
     const std::string a = "a" + std::to_string(k);
     code += "  " + f.args[k].second.name() + " " + a + ";\n";
-    detail::load(f.args[k].second, a, at, code);
+    load_value(f.args[k].second, a, at, code);
     call += (k ? ", " : "") + a;
   }
   code += "  " + f.result.name() + " r = " + f.name + "(" + call + ");\n";
   at = 0;
-  detail::store(f.result, "r", at, code);
+  store_value(f.result, "r", at, code);
   code += "}\n";
   src.add(code, __FILE__, __LINE__);
 }

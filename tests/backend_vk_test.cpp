@@ -1,0 +1,148 @@
+// The Vulkan backend on a real driver (Mesa lavapipe) under the Khronos validation layer: formulas agree
+// with the CPU, G-buffers hold exactly the CPU's bytes, bad input gives sentences, and any validation
+// message fails the test. Skips with a message without a Vulkan device.
+#include <catch2/catch.hpp>
+
+#include <dstrans_vk.hpp>
+#include <dstrans_vk_device.hpp>
+
+#include "backend_checks.hpp"
+
+using namespace dstrans;
+
+namespace {
+
+// A validated device and dstrans's objects on it, for one test case; empty where there is none.
+struct vk_fixture {
+  std::unique_ptr<vk::headless_device> hd;
+  std::unique_ptr<vk::device> dev;
+  ~vk_fixture() {
+    dev.reset();
+    if (hd) check_quiet();
+  }
+  void check_quiet() {
+    const auto messages = hd->validation_messages();
+    for (const auto& m : messages) UNSCOPED_INFO(m);
+    CHECK(messages.empty());
+  }
+};
+
+bool open(vk_fixture& fx) {
+  auto hd = vk::headless_device::create(true);
+  if (!hd) {
+    WARN("skipped: no validated Vulkan device here: " << hd.error());
+    return false;
+  }
+  fx.hd = std::move(*hd);
+  auto dev = vk::device::create(fx.hd->ctx());
+  REQUIRE(dev);
+  fx.dev = std::move(*dev);
+  return true;
+}
+
+template <class L>
+void check_gbuffer_write(vk::device& dev, int width, int height, bool exact) {
+  const auto raw = testing::test_surfaces(width, height);
+  const auto surfaces = exact ? testing::on_grid<L>(raw) : raw;
+  auto targets = dev.make_targets(describe<L>(), width, height, "test gbuffer", false);
+  REQUIRE(targets);
+  auto vs = dev.get_shader(glsl::fullscreen_vertex_shader(), spirv::stage::vertex, "fullscreen");
+  auto fs = dev.get_shader(testing::gbuffer_writer<L>(width), spirv::stage::fragment, "gbuffer write");
+  REQUIRE(vs);
+  REQUIRE(fs);
+  auto pipe = dev.make_graphics_pipeline(**vs, **fs, targets->formats, "gbuffer write");
+  REQUIRE(pipe);
+  words packed;
+  for (const surface& s : surfaces) put(s, packed);
+  auto buf = dev.make_buffer(packed.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "surfaces");
+  REQUIRE(buf);
+  std::memcpy(buf->mapped, packed.data(), packed.size() * 4);
+
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0, 1, 1, &size};
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  vkCreateDescriptorPool(dev.ctx().device, &pci, nullptr, &pool);
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr, pool, 1, &pipe->set_layout};
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  vkAllocateDescriptorSets(dev.ctx().device, &ai, &set);
+  VkDescriptorBufferInfo bi{buf->handle, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  w.pBufferInfo = &bi;
+  vkUpdateDescriptorSets(dev.ctx().device, 1, &w, 0, nullptr);
+  const double ms = dev.submit([&](VkCommandBuffer cmd) {
+    dev.begin_rendering(cmd, *targets, true);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe->handle);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe->layout, 0, 1, &set, 0, nullptr);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    dev.end_rendering(cmd);
+  });
+  CHECK(ms >= 0.0);
+  testing::check_texels<L>(surfaces, exact, [&](int t) {
+    auto texels = dev.read_texels(*targets, t);
+    REQUIRE(texels);
+    return *texels;
+  });
+  vkDestroyDescriptorPool(dev.ctx().device, pool, nullptr);
+  dev.destroy(*buf);
+  dev.destroy(*pipe);
+  dev.destroy(*targets);
+}
+
+}  // namespace
+
+TEST_CASE("VK: every formula agrees with the CPU on 10,000 inputs", "[vk][formula]") {
+  vk_fixture fx;
+  if (!open(fx)) return;
+  INFO(fx.hd->name());
+  testing::check_every_formula([&](const formula& f, const words& a, std::size_t n) { return fx.dev->run_formula(f, a, n); });
+}
+
+TEST_CASE("VK: a G-buffer written by a shader holds the CPU's bytes (on the grid) or permitted ones", "[vk][layout]") {
+  vk_fixture fx;
+  if (!open(fx)) return;
+  for (bool exact : {true, false}) {
+    check_gbuffer_write<thesis_gbuffer>(*fx.dev, 37, 23, exact);
+    check_gbuffer_write<testing::float_layout>(*fx.dev, 37, 23, exact);
+    check_gbuffer_write<thesis_shadow_map>(*fx.dev, 16, 9, exact);
+  }
+}
+
+TEST_CASE("VK: clear errors for layouts the device cannot hold, bad shaders and mismatched pipelines", "[vk]") {
+  vk_fixture fx;
+  if (!open(fx)) return;
+  vk::device& dev = *fx.dev;
+  std::vector<target_desc> many(9, target_desc{format::r8, {"unused"}});
+  auto too_many = dev.make_targets(many, 8, 8, "wide", false);
+  REQUIRE_FALSE(too_many);
+  CHECK_THAT(too_many.error(), Catch::Contains("9 render targets") && Catch::Contains("at most"));
+  auto empty = dev.make_targets(describe<thesis_gbuffer>(), 8, 0, "empty", false);
+  REQUIRE_FALSE(empty);
+  CHECK_THAT(empty.error(), Catch::Contains("8x0 is not a size"));
+
+  glsl::source broken;
+  broken.add("layout(location = 0) out vec4 o;\nvoid main() {\n  o = vec4(missing_value);\n}\n", "broken.frag", 10);
+  auto bad = dev.get_shader(broken, spirv::stage::fragment, "broken");
+  REQUIRE_FALSE(bad);
+  CHECK_THAT(bad.error(), Catch::Contains("broken.frag:12:") && Catch::Contains("missing_value"));
+
+  // A shader that writes the thesis G-buffer cannot draw into the light buffer: caught before building.
+  auto vs = dev.get_shader(glsl::fullscreen_vertex_shader(), spirv::stage::vertex, "fullscreen");
+  auto fs = dev.get_shader(testing::gbuffer_writer<thesis_gbuffer>(8), spirv::stage::fragment, "gbuffer write");
+  REQUIRE(vs);
+  REQUIRE(fs);
+  auto mismatch = dev.make_graphics_pipeline(**vs, **fs, {format::rgba8}, "mismatch");
+  REQUIRE_FALSE(mismatch);
+  CHECK_THAT(mismatch.error(), Catch::Contains("writes 4 outputs") && Catch::Contains("1 targets"));
+  auto wrong_width = dev.make_graphics_pipeline(**vs, **fs, {format::rgba8, format::rgb10a2, format::rgba8, format::rg32f},
+                                                "wrong width");
+  REQUIRE_FALSE(wrong_width);
+  CHECK_THAT(wrong_width.error(), Catch::Contains("does not match target 3 (RG32F)"));
+
+  // The same text compiles once: the cache hands back the same module.
+  auto again = dev.get_shader(glsl::fullscreen_vertex_shader(), spirv::stage::vertex, "fullscreen again");
+  REQUIRE(again);
+  CHECK(*again == *vs);
+}
