@@ -1,19 +1,29 @@
 # The README's two commands. Both install the Debian packages dstrans needs when some are missing
-# (apt-get update only then), configure once, build incrementally in build/, then do their job.
-#   make demo   writes what dstrans generates for the thesis's layouts into out/demo/
-#   make test   builds and runs every test (ctest)
+# (apt-get update only then), configure once, build incrementally, then do their job.
+#   make demo       writes what dstrans generates for the thesis's layouts into out/demo/
+#   make test       builds and runs every test (ctest) in build/, then again under the sanitizers
+#   make sanitize   the suite alone under AddressSanitizer, LeakSanitizer and UBSan, in build-sanitize/
 
 BUILD ?= build
+SANITIZE_BUILD ?= build-sanitize
 OUT ?= out/demo
 JOBS ?= $(shell nproc)
 
 # Debian 12 packages: compiler and build, the core's GLM, glslang and SPIRV-Cross for shader checks,
 # Catch2 for the tests; ccache keeps rebuilds cheap.
-PACKAGES := g++ make cmake ccache libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross catch2
+# GL through EGL and Vulkan on Mesa (llvmpipe, lavapipe) with the Khronos validation layer, and
+# nlohmann-json for the command line.
+PACKAGES := g++ make cmake ccache libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross catch2 \
+            libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri mesa-vulkan-drivers libvulkan-dev \
+            vulkan-validationlayers nlohmann-json3-dev
 
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
-.PHONY: demo test deps configure build clean
+LAUNCHER = $$(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+SANITIZE_ENV := ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+                LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers.supp:print_suppressions=0
+
+.PHONY: demo test sanitize deps configure build clean
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
@@ -23,8 +33,10 @@ deps:
 	fi
 
 $(BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  $$(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(LAUNCHER)
+
+$(SANITIZE_BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Debug -DDSTRANS_SANITIZE=ON $(LAUNCHER)
 
 configure: $(BUILD)/CMakeCache.txt
 
@@ -33,6 +45,11 @@ build: deps configure
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	$(MAKE) --no-print-directory sanitize
+
+sanitize: deps $(SANITIZE_BUILD)/CMakeCache.txt
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	$(SANITIZE_ENV) ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
 
 demo: build
 	@mkdir -p $(OUT)
@@ -44,4 +61,4 @@ demo: build
 	@echo "make demo: wrote $$(ls $(OUT)/*.glsl | wc -l) GLSL files to $(OUT)/, each accepted by glslangValidator"
 
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) $(SANITIZE_BUILD) out

@@ -1,6 +1,8 @@
 // The GLSL source builder: shared-code formatting, de-duplication, origins and error mapping.
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include <dstrans/glsl.hpp>
 #include <dstrans/result.hpp>
 #include <dstrans/surface.hpp>
@@ -31,7 +33,7 @@ TEST_CASE("shared code is GLSL once the keywords are spelled out", "[glsl]") {
 TEST_CASE("a shared block records where it was written", "[glsl]") {
   CHECK(std::string(text::dst_test_block.name) == "dst_test_block");
   CHECK(std::string(text::dst_test_block.file).find("glsl_test.cpp") != std::string::npos);
-  CHECK(text::dst_test_block.line == 8);
+  CHECK(text::dst_test_block.line == 10);
 }
 
 TEST_CASE("a source maps every line to its origin and holds each shared block once", "[glsl]") {
@@ -52,6 +54,19 @@ TEST_CASE("a source maps every line to its origin and holds each shared block on
   CHECK(src.origin_of(0).file.empty());
   CHECK(src.origin_of(before + 3).file.empty());
   CHECK(src.str().back() == '\n');
+}
+
+TEST_CASE("a pass shader file is added with its own line numbers", "[glsl]") {
+  const std::string path = "glsl_test_pass.frag.glsl";
+  std::ofstream(path) << "// a pass\nvoid main() {\n}\n";
+  glsl::source src;
+  REQUIRE(src.add_file(path));
+  CHECK(src.origin_of(3).file == path);
+  CHECK(src.origin_of(3).line == 2);
+  CHECK(src.str().find("void main()") != std::string::npos);
+  const auto missing = src.add_file("no/such/file.glsl");
+  REQUIRE_FALSE(missing);
+  CHECK(missing.error() == "cannot read GLSL file no/such/file.glsl");
 }
 
 TEST_CASE("compiler logs are mapped to file:line of the original text", "[glsl]") {

@@ -48,8 +48,11 @@ result<std::unique_ptr<headless_device>> headless_device::create(bool validation
   ici.ppEnabledLayerNames = &layer;
   ici.enabledExtensionCount = 1;
   ici.ppEnabledExtensionNames = extensions;
-  if (vkCreateInstance(&ici, nullptr, &hd->ctx_.instance) != VK_SUCCESS)
-    return failure{"cannot create a Vulkan 1.3 instance (is libvulkan1 with a driver installed?)"};
+  const VkResult created = vkCreateInstance(&ici, nullptr, &hd->ctx_.instance);
+  if (created == VK_ERROR_INCOMPATIBLE_DRIVER)
+    return failure{"no Vulkan driver is installed (Debian: mesa-vulkan-drivers for lavapipe)"};
+  if (created != VK_SUCCESS)
+    return failure{"cannot create a Vulkan 1.3 instance (VkResult " + std::to_string(int(created)) + ")"};
   hd->ctx_.debug_utils = true;
   if (validation) {
     auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(

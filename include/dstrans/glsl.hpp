@@ -4,15 +4,19 @@
 //   src.add_shared(dstrans::text::dst_surface);           // a shared block, once however often added
 //   src.add("void main() {}\n", __FILE__, __LINE__);      // generated or hand-written text
 //   std::string code = src.str();                         // starts with "#version 450"
+//   src.add_file("shaders/glsl/compose.frag.glsl");       // a pass shader, its lines mapped to that file
 //   std::string errors = src.map_log(compiler_log);       // "0:12: ..." -> "include/dstrans/x.hpp:40: ..."
 #pragma once
 
 #include <cctype>
 #include <cstddef>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "detail/shared.hpp"
+#include "result.hpp"
 
 namespace dstrans::glsl {
 
@@ -101,6 +105,17 @@ class source {
     for (int k = 0; k < n; ++k) lines_.push_back({file, line + k});
     code_ += text;
     if (!text.empty() && text.back() != '\n') code_ += '\n';
+  }
+
+  // Appends the text of file `path` (a hand-written pass shader), its lines mapped to that file; a
+  // failure if it cannot be read.
+  result<bool> add_file(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) return failure{"cannot read GLSL file " + path};
+    std::ostringstream text;
+    text << in.rdbuf();
+    add(text.str(), path, 1);
+    return true;
   }
 
   // Appends a shared block unless it is already in; every line maps to the block's DSTRANS_SHARED line.

@@ -13,7 +13,7 @@
 //   the row above, as the thesis's compose pass samples it; row 0 takes row 1. Every pixel and its
 //   partner then differ in parity, so one is transparent-capable and one is not, at any height >= 2.
 // - columns: the same with columns: odd columns keep, the partner is the column to the left.
-// - checker: the 2x2 checkerboard: pixels with x + y odd keep; the partner is the left neighbour
+// - checker: the 2x2 checkerboard: pixels with x + y odd keep (computed as x xor y, which cannot overflow); the partner is the left neighbour
 //   (column 1 for column 0), or, in a 1-pixel-wide image, the row neighbour as for rows.
 // - none: every pixel keeps transparency and is its own partner (no interlacing: one layer only).
 // Where no partner exists (a 1-pixel extent along the predicate's axis), the partner is the pixel itself.
@@ -41,7 +41,7 @@ DST_FN ivec2 dst_columns_partner(ivec2 p, ivec2 size) {
 )
 
 DSTRANS_SHARED(dst_interlace_checker,
-DST_FN bool dst_checker_keep(ivec2 p, ivec2 size) { return ((p.x + p.y) & 1) == 1; }
+DST_FN bool dst_checker_keep(ivec2 p, ivec2 size) { return ((p.x ^ p.y) & 1) == 1; }
 DST_FN ivec2 dst_checker_partner(ivec2 p, ivec2 size) {
   if (size.x >= 2) return ivec2(p.x > 0 ? p.x - 1 : 1, p.y);
   if (size.y >= 2) return ivec2(p.x, p.y > 0 ? p.y - 1 : 1);
