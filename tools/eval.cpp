@@ -156,11 +156,10 @@ result<runner> make_runner(const std::string& backend) {
     if (!hd) return failure{"no Vulkan: " + hd.error()};
     auto dev = vk::device::create((*hd)->ctx());
     if (!dev) return failure{"no Vulkan: " + dev.error()};
-    // The device must go before the instance it lives on.
+    // Members go in reverse order: the device before the instance it lives on.
     struct both {
       std::unique_ptr<vk::headless_device> hd;
       std::unique_ptr<vk::device> dev;
-      ~both() { dev.reset(); }
     };
     auto state = std::make_shared<both>();
     state->hd = std::move(*hd);

@@ -1,26 +1,20 @@
 // Implements dstrans_gl.hpp.
 #include "dstrans_gl.hpp"
 
+#include <cstdio>
 #include <cstring>
 
 namespace dstrans::gl {
 
 namespace {
 
-std::string shader_log(GLuint shader) {
+// A shader's or program's info log (the two getters have the same shape).
+std::string info_log(GLuint object, void (*get_iv)(GLuint, GLenum, GLint*),
+                     void (*get_log)(GLuint, GLsizei, GLsizei*, GLchar*)) {
   GLint n = 0;
-  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &n);
+  get_iv(object, GL_INFO_LOG_LENGTH, &n);
   std::string log(std::size_t(n > 0 ? n : 1), '\0');
-  glGetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
-  log.resize(std::strlen(log.c_str()));
-  return log;
-}
-
-std::string program_log(GLuint program) {
-  GLint n = 0;
-  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &n);
-  std::string log(std::size_t(n > 0 ? n : 1), '\0');
-  glGetProgramInfoLog(program, GLsizei(log.size()), nullptr, log.data());
+  get_log(object, GLsizei(log.size()), nullptr, log.data());
   log.resize(std::strlen(log.c_str()));
   return log;
 }
@@ -33,7 +27,7 @@ result<GLuint> compile(GLenum stage, const glsl::source& src, const std::string&
   GLint ok = GL_FALSE;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    const std::string log = src.map_log(shader_log(shader));
+    const std::string log = src.map_log(info_log(shader, glGetShaderiv, glGetShaderInfoLog));
     glDeleteShader(shader);
     return failure{label_text + ": " + log};
   }
@@ -52,7 +46,7 @@ result<GLuint> link(const std::vector<GLuint>& shaders, const std::string& label
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
-    const std::string log = program_log(program);
+    const std::string log = info_log(program, glGetProgramiv, glGetProgramInfoLog);
     glDeleteProgram(program);
     return failure{label_text + ": link failed: " + log};
   }

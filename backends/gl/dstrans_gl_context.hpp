@@ -1,6 +1,6 @@
 // A headless OpenGL 4.5 core context on EGL's surfaceless platform (Mesa llvmpipe without a display, or
 // any EGL driver with EGL_MESA_platform_surfaceless). For tools and tests: an engine has its own context
-// and never needs this file.
+// and never needs this file. One at a time per process: destroying one terminates the EGL display.
 //
 //   auto ctx = dstrans::gl::headless_context::create();
 //   if (!ctx) { std::fprintf(stderr, "%s\n", ctx.error().c_str()); return 1; }   // no EGL display, ...

@@ -320,6 +320,18 @@ result<const shader*> device::get_shader(const glsl::source& src, spirv::stage s
   return out;
 }
 
+result<pipeline> device::pipeline_layout(const std::vector<const shader*>& stages, const std::string& label) {
+  auto set_layout = set_layout_from(ctx_, stages);
+  if (!set_layout) return failure{label + ": " + set_layout.error()};
+  pipeline p;
+  p.set_layout = *set_layout;
+  VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  lci.setLayoutCount = 1;
+  lci.pSetLayouts = &p.set_layout;
+  vkCreatePipelineLayout(ctx_.device, &lci, ctx_.allocator, &p.layout);
+  return p;
+}
+
 result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shader& fragment,
                                                 const std::vector<format>& color_formats, const std::string& label) {
   // The fragment shader must write exactly the targets it is drawn into.
@@ -333,14 +345,9 @@ result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shad
                      std::to_string(outs[i].components) + " components) does not match target " + std::to_string(i) + " (" +
                      info(color_formats[i]).name + ")"};
   }
-  pipeline p;
-  auto set_layout = set_layout_from(ctx_, {&vertex, &fragment});
-  if (!set_layout) return failure{label + ": " + set_layout.error()};
-  p.set_layout = *set_layout;
-  VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  lci.setLayoutCount = 1;
-  lci.pSetLayouts = &p.set_layout;
-  vkCreatePipelineLayout(ctx_.device, &lci, ctx_.allocator, &p.layout);
+  auto laid_out = pipeline_layout({&vertex, &fragment}, label);
+  if (!laid_out) return laid_out;
+  pipeline p = *laid_out;
 
   VkPipelineShaderStageCreateInfo stages[2]{};
   for (int i = 0; i < 2; ++i) {
@@ -402,14 +409,9 @@ result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shad
 }
 
 result<pipeline> device::make_compute_pipeline(const shader& compute, const std::string& label) {
-  pipeline p;
-  auto set_layout = set_layout_from(ctx_, {&compute});
-  if (!set_layout) return failure{label + ": " + set_layout.error()};
-  p.set_layout = *set_layout;
-  VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  lci.setLayoutCount = 1;
-  lci.pSetLayouts = &p.set_layout;
-  vkCreatePipelineLayout(ctx_.device, &lci, ctx_.allocator, &p.layout);
+  auto laid_out = pipeline_layout({&compute}, label);
+  if (!laid_out) return laid_out;
+  pipeline p = *laid_out;
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;

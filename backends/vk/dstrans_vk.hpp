@@ -131,6 +131,8 @@ class device {
   result<image> make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
                            const std::string& label);
   void destroy(image& i);
+  // A pipeline with its layouts made from what `stages` declare, and no VkPipeline yet.
+  result<pipeline> pipeline_layout(const std::vector<const shader*>& stages, const std::string& label);
 
   context ctx_;
   VkCommandPool pool_ = VK_NULL_HANDLE;
