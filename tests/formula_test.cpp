@@ -16,20 +16,29 @@ TEST_CASE("every function of every shared block is reachable by name", "[formula
   std::size_t functions = 0;
   for (const shared_text* block : detail::shared_blocks()) {
     if (std::string(block->file).find("include/dstrans/") == std::string::npos) continue;  // tests' own blocks
-    // Formatted shared code opens each top-level function on an unindented line ending in "{".
-    std::istringstream lines(glsl::format_shared(block->code));
-    for (std::string line; std::getline(lines, line);) {
-      if (line.empty() || line[0] == ' ' || line.back() != '{' || line.rfind("struct ", 0) == 0) continue;
-      const std::size_t open = line.find('(');
-      const std::string name = line.substr(line.rfind(' ', open) + 1, open - line.rfind(' ', open) - 1);
+    for (const std::string& name : glsl::definitions(block->code)) {
+      if (std::string(block->code).find("struct " + name) != std::string::npos) continue;  // a record, not a function
       ++functions;
-      INFO(block->file << ":" << block->line);
+      INFO(block->file << ":" << block->line << " defines " << name);
       CHECK(registered.count(name) == 1);
     }
   }
   CHECK(functions == formulas().size());
   CHECK(find_formula("dst_rows_keep") != nullptr);
   CHECK(find_formula("no_such_formula") == nullptr);
+}
+
+TEST_CASE("a shared block brings the blocks it uses, once, before itself", "[formula][glsl]") {
+  CHECK(glsl::definitions(text::dst_surface.code) == std::vector<std::string>{"dst_surface", "dst_surface_zero"});
+  glsl::source src;
+  src.add_shared(text::dst_compose);
+  src.add_shared(text::dst_phong);
+  CHECK(src.has(text::dst_surface));
+  CHECK(src.has(text::dst_light_sample));
+  CHECK_FALSE(src.has(text::dst_interlace_rows));
+  const std::string code = src.str();
+  CHECK(code.find("struct dst_light_sample") < code.find("vec3 dst_shade("));
+  CHECK(code.find("struct dst_light_sample") == code.rfind("struct dst_light_sample"));
 }
 
 TEST_CASE("argument names and types come from the shared text and the C++ signature", "[formula]") {

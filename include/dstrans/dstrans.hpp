@@ -16,5 +16,8 @@
 #include "interlace.hpp"
 #include "layout.hpp"
 #include "light_mesh.hpp"
+#include "phong.hpp"
+#include "refraction.hpp"
 #include "result.hpp"
 #include "surface.hpp"
+#include "transparent_shadow.hpp"

@@ -22,7 +22,10 @@
 #include "fullscreen.hpp"
 #include "glsl.hpp"
 #include "interlace.hpp"
+#include "phong.hpp"
+#include "refraction.hpp"
 #include "surface.hpp"
+#include "transparent_shadow.hpp"
 
 namespace dstrans {
 
@@ -182,6 +185,15 @@ void put(const T& v, words& w) {
   value_traits<T>::put(v, w);
 }
 
+// The values an argument is meant to take, for tests that draw inputs: floats (and every component of
+// a vector) in [lo, hi], or a unit vector. Outside its domain a formula still runs, but its result may
+// be ill-conditioned (Phong of non-unit vectors cancels), so CPU and GPU need not agree to a few ulps.
+struct input_range {
+  float lo = -4.0f, hi = 4.0f;
+  bool unit = false;
+};
+inline input_range unit_vector() { return {-1.0f, 1.0f, true}; }
+
 // A shared function that dstrans eval and the agreement tests can call.
 struct formula {
   std::string name;           // the function's name in C++ and GLSL
@@ -189,6 +201,14 @@ struct formula {
   std::vector<std::pair<std::string, value_type>> args;
   value_type result;
   std::function<words(const words&)> cpu;  // one call: the packed arguments in, the packed result out
+  std::vector<input_range> domains;        // one per argument
+
+  // This formula with argument `arg` meant to lie in `r`.
+  formula within(const std::string& arg, input_range r) && {
+    for (std::size_t i = 0; i < args.size(); ++i)
+      if (args[i].first == arg) domains[i] = r;
+    return std::move(*this);
+  }
 };
 
 namespace detail {
@@ -220,7 +240,7 @@ inline std::vector<std::string> parameter_names(const std::string& code, const s
 
 template <class R, class... A, std::size_t... I>
 formula make_formula(const shared_text& block, const char* name, R (*fn)(A...), std::index_sequence<I...>) {
-  formula f{name, &block, {}, value_traits<R>::type(), {}};
+  formula f{name, &block, {}, value_traits<R>::type(), {}, std::vector<input_range>(sizeof...(A))};
   const std::vector<std::string> names = parameter_names(block.code, name);
   const value_type types[] = {value_traits<std::decay_t<A>>::type()..., value_traits<R>::type()};
   for (std::size_t i = 0; i < sizeof...(A); ++i) f.args.emplace_back(i < names.size() ? names[i] : "?", types[i]);
@@ -263,6 +283,20 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_interlace_none, dst_none_keep),
       DSTRANS_FORMULA(dst_interlace_none, dst_none_partner),
       DSTRANS_FORMULA(dst_fullscreen, dst_fullscreen_position),
+      DSTRANS_FORMULA(dst_phong, dst_phong)
+          .within("n", unit_vector())
+          .within("l", unit_vector())
+          .within("v", unit_vector())
+          .within("spec_power", {0.0f, 255.0f})
+          .within("light", {0.0f, 4.0f}),
+      DSTRANS_FORMULA(dst_attenuation, dst_attenuation),
+      DSTRANS_FORMULA(dst_attenuation, dst_spot_falloff),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_transparent_shadow),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_opaque_shadow),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_offset),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_rejected),
+      DSTRANS_FORMULA(dst_compose, dst_shade),
+      DSTRANS_FORMULA(dst_compose, dst_compose),
   };
   return all;
 }

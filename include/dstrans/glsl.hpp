@@ -92,6 +92,22 @@ inline std::string format_shared(const char* code) {
   return out;
 }
 
+// The names shared block `code` defines at its top level: its structs and its functions.
+inline std::vector<std::string> definitions(const char* code) {
+  std::vector<std::string> names;
+  std::istringstream lines(format_shared(code));
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == ' ' || line.back() != '{') continue;
+    if (line.rfind("struct ", 0) == 0) {
+      names.push_back(line.substr(7, line.find(' ', 7) - 7));
+    } else if (const std::size_t open = line.find('('); open != std::string::npos) {
+      const std::size_t start = line.rfind(' ', open) + 1;
+      names.push_back(line.substr(start, open - start));
+    }
+  }
+  return names;
+}
+
 // A GLSL translation unit under construction.
 class source {
  public:
@@ -118,11 +134,20 @@ class source {
     return true;
   }
 
-  // Appends a shared block unless it is already in; every line maps to the block's DSTRANS_SHARED line.
+  // Appends a shared block unless it is already in, after the blocks that define what it uses (found by
+  // name among all shared blocks); every line maps to the block's DSTRANS_SHARED line.
   void add_shared(const shared_text& block) {
     for (const shared_text* b : shared_)
       if (b == &block) return;
     shared_.push_back(&block);
+    for (const shared_text* other : detail::shared_blocks()) {
+      if (other == &block) continue;
+      for (const std::string& name : definitions(other->code))
+        if (uses(block.code, name)) {
+          add_shared(*other);
+          break;
+        }
+    }
     const std::string text = format_shared(block.code);
     for (char c : text)
       if (c == '\n') lines_.push_back({block.file, block.line});
@@ -161,6 +186,15 @@ class source {
   }
 
  private:
+  // Whether `code` mentions identifier `name` as a whole word.
+  static bool uses(const std::string& code, const std::string& name) {
+    auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + 1))
+      if ((at == 0 || !word(code[at - 1])) && (at + name.size() == code.size() || !word(code[at + name.size()])))
+        return true;
+    return false;
+  }
+
   std::string map_row(const std::string& row) const {
     const std::size_t at = row.find("0:");
     if (at == std::string::npos || (at > 0 && std::isdigit(static_cast<unsigned char>(row[at - 1]))))

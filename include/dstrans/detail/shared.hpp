@@ -17,7 +17,10 @@
 // - no preprocessor directives and no struct constructors (C++17 has no parenthesised aggregate
 //   init): build a struct member by member;
 // - out and inout parameters are DST_OUT(T) and DST_INOUT(T); every function is DST_FN;
-// - integer arithmetic on non-negative values only (`%` and `>>` of negatives differ).
+// - integer arithmetic on non-negative values only (`%` and `>>` of negatives differ), and no signed
+//   overflow (undefined in C++);
+// - where a NaN can arrive, decide it with a comparison (`!(x > 0.0f)`) before min, max, clamp or
+//   smoothstep: GLSL leaves them undefined for NaN, and GPUs and GLM answer differently.
 // The stringified text loses comments and line breaks; dstrans::glsl re-breaks it for reading and
 // maps compiler errors back to the line of the DSTRANS_SHARED block.
 #pragma once

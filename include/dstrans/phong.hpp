@@ -1,0 +1,49 @@
+// Lighting in the light-accumulation pass (TECHNIQUES.md S0, Eq. 2.1): Phong without the surface's k_d
+// and k_s, which the compose pass applies, plus distance attenuation and spot falloff.
+//
+//   dstrans::light_sample s = dstrans::shader::dst_phong(n, l, v, 32.0f, light_rgb);
+//   float a = dstrans::shader::dst_attenuation(distance, range) * dstrans::shader::dst_spot_falloff(c, co, ci);
+//
+// Choices the thesis leaves open, documented here and tested:
+// - the specular term is white; its scalar is the mean of the light's RGB, so a white light of
+//   intensity 1 gives (R.V)^n;
+// - no light reaches a surface facing away (N.L <= 0), specular included;
+// - (R.V)^n is 0 where R.V <= 0, for every n (GLSL leaves pow(0, n) undefined); n = 0 gives 1 elsewhere;
+// - attenuation is (1 - d/range)^2 clamped to [0, 1]: 1 at the light, 0 at and past its range, so the
+//   light volume's mesh bounds every lit pixel; range <= 0 lights nothing;
+// - spot falloff rises smoothly (smoothstep) from the outer cone's cosine to the inner's; equal cones
+//   give a hard edge, lit where cos >= cos_outer;
+// - a NaN distance or angle lights nothing (written out with comparisons: GPUs and GLM disagree on
+//   clamp and smoothstep of NaN).
+#pragma once
+
+#include "detail/shared.hpp"
+#include "surface.hpp"
+
+DSTRANS_SHARED(dst_phong,
+DST_FN dst_light_sample dst_phong(vec3 n, vec3 l, vec3 v, float spec_power, vec3 light) {
+  dst_light_sample s = dst_light_sample_zero();
+  float ndotl = dot(n, l);
+  if (!(ndotl > 0.0f)) return s;
+  vec3 r = n * (2.0f * ndotl) - l;
+  float rdotv = dot(r, v);
+  s.light = light * ndotl;
+  s.specular = rdotv > 0.0f ? pow(rdotv, spec_power) * ((light.x + light.y + light.z) * (1.0f / 3.0f)) : 0.0f;
+  return s;
+}
+)
+
+DSTRANS_SHARED(dst_attenuation,
+DST_FN float dst_attenuation(float distance, float range) {
+  if (!(range > 0.0f)) return 0.0f;
+  float x = 1.0f - distance / range;
+  if (!(x > 0.0f)) return 0.0f;
+  return x >= 1.0f ? 1.0f : x * x;
+}
+DST_FN float dst_spot_falloff(float cos_angle, float cos_outer, float cos_inner) {
+  if (!(cos_inner > cos_outer)) return cos_angle >= cos_outer ? 1.0f : 0.0f;
+  float t = (cos_angle - cos_outer) / (cos_inner - cos_outer);
+  if (!(t > 0.0f)) return 0.0f;
+  return t >= 1.0f ? 1.0f : t * t * (3.0f - 2.0f * t);
+}
+)

@@ -1,0 +1,38 @@
+// Screen-space refraction with depth rejection, and the compose blend (TECHNIQUES.md S0, 3.3, Eq. 3.3).
+//
+// The compose pass samples the G-buffer at the pixel and at its interlace partner; the lower-alpha
+// sample is the transparent S_t, the other the background S_b. The screen-space xy of S_t's normal
+// times a strength (in pixels) moves the sample to P; if P holds a transparent sample its partner,
+// opaque by construction, is used: P_o. If S_t lies behind P_o, P_o is a foreground object that would
+// leak into the glass, and S_b is used instead. Then
+//   I_F = (C_o I_o)(1 - alpha_t) + (C_t I_t) alpha_t,
+// where each term also receives the ambient light and its white specular (spec_intensity times the
+// light buffer's specular).
+//
+//   glm::vec2 offset = dstrans::shader::dst_refraction_offset(view_normal, strength);
+//   bool leak = dstrans::shader::dst_refraction_rejected(depth_t, depth_o);
+//   glm::vec3 colour = dstrans::shader::dst_compose(opaque, light_o, transparent, light_t, ambient);
+//
+// Choices: screen y grows downwards while view y grows upwards, so the offset's y is negated; equal depths
+// are not rejected (a surface does not leak into itself); strength 0 gives no offset, and the compose
+// is then exactly the de-interlaced blend.
+#pragma once
+
+#include "detail/shared.hpp"
+#include "surface.hpp"
+
+DSTRANS_SHARED(dst_refraction,
+DST_FN vec2 dst_refraction_offset(vec3 view_normal, float strength) {
+  return vec2(view_normal.x, -view_normal.y) * strength;
+}
+DST_FN bool dst_refraction_rejected(float depth_t, float depth_o) { return depth_t > depth_o; }
+)
+
+DSTRANS_SHARED(dst_compose,
+DST_FN vec3 dst_shade(dst_surface s, dst_light_sample l, vec3 ambient) {
+  return s.diffuse * (l.light + ambient) + vec3(s.spec_intensity * l.specular);
+}
+DST_FN vec3 dst_compose(dst_surface o, dst_light_sample light_o, dst_surface t, dst_light_sample light_t, vec3 ambient) {
+  return dst_shade(o, light_o, ambient) * (1.0f - t.alpha) + dst_shade(t, light_t, ambient) * t.alpha;
+}
+)

@@ -1,0 +1,97 @@
+// The thesis's equations (TECHNIQUES.md S0) on the CPU, against values worked out by hand. The same
+// text runs on the GPU in backend_*_test.cpp.
+#include <catch2/catch.hpp>
+
+#include <dstrans/phong.hpp>
+#include <dstrans/refraction.hpp>
+#include <dstrans/transparent_shadow.hpp>
+
+using namespace dstrans;
+using namespace dstrans::shader;
+
+TEST_CASE("Phong (Eq. 2.1): diffuse N.L, white specular (R.V)^n, nothing facing away", "[phong]") {
+  const glm::vec3 n(0, 0, 1), light(1.0f, 0.5f, 0.0f);
+  const glm::vec3 l = glm::normalize(glm::vec3(1, 0, 1));
+  // Mirror direction of l about n is (-1, 0, 1)/sqrt2; looking from there, R.V = 1.
+  light_sample s = dst_phong(n, l, glm::normalize(glm::vec3(-1, 0, 1)), 16.0f, light);
+  CHECK(s.light.x == Approx(0.70710678f));
+  CHECK(s.light.y == Approx(0.35355339f));
+  CHECK(s.specular == Approx(0.5f));  // mean of the light's RGB
+  // Looking straight down the normal: R.V = cos 45 degrees.
+  s = dst_phong(n, l, n, 2.0f, light);
+  CHECK(s.specular == Approx(0.5f * 0.5f));
+  // Behind the surface, or grazing: nothing.
+  s = dst_phong(n, -l, n, 2.0f, light);
+  CHECK(s.light == glm::vec3(0.0f));
+  CHECK(s.specular == 0.0f);
+  CHECK(dst_phong(n, glm::vec3(1, 0, 0), n, 2.0f, light).light == glm::vec3(0.0f));
+  // R.V <= 0 gives no specular for any power, including 0.
+  CHECK(dst_phong(n, l, glm::normalize(glm::vec3(1, 0, -1)), 0.0f, light).specular == 0.0f);
+  CHECK(dst_phong(n, l, n, 0.0f, light).specular == Approx(0.5f));
+}
+
+TEST_CASE("attenuation and spot falloff", "[phong]") {
+  CHECK(dst_attenuation(0.0f, 10.0f) == 1.0f);
+  CHECK(dst_attenuation(5.0f, 10.0f) == 0.25f);
+  CHECK(dst_attenuation(10.0f, 10.0f) == 0.0f);
+  CHECK(dst_attenuation(20.0f, 10.0f) == 0.0f);
+  CHECK(dst_attenuation(-1.0f, 10.0f) == 1.0f);
+  CHECK(dst_attenuation(1.0f, 0.0f) == 0.0f);
+  CHECK(dst_attenuation(NAN, 10.0f) == 0.0f);
+  CHECK(dst_spot_falloff(1.0f, 0.8f, 0.9f) == 1.0f);
+  CHECK(dst_spot_falloff(0.85f, 0.8f, 0.9f) == Approx(0.5f));
+  CHECK(dst_spot_falloff(0.7f, 0.8f, 0.9f) == 0.0f);
+  CHECK(dst_spot_falloff(0.8f, 0.8f, 0.8f) == 1.0f);   // equal cones: a hard edge, lit on it
+  CHECK(dst_spot_falloff(0.79f, 0.8f, 0.8f) == 0.0f);
+  CHECK(dst_spot_falloff(NAN, 0.8f, 0.9f) == 0.0f);
+}
+
+TEST_CASE("transparent shadows (Eq. 3.1, 3.2): opaque blocks, glass filters by min and alpha", "[shadow]") {
+  const glm::vec3 light(1.0f, 0.8f, 0.6f);
+  const glm::vec4 glass(0.2f, 0.9f, 0.3f, 0.25f), wall(0.5f, 0.5f, 0.5f, 1.0f);
+  // Glass at depth 0.3 on the texel, the opaque occluder behind it at 0.7 on the partner.
+  CHECK(dst_transparent_shadow(light, 0.2f, 0.0f, 0.3f, glass, 0.7f, wall) == light);  // in front of both
+  const glm::vec3 filtered = dst_transparent_shadow(light, 0.5f, 0.0f, 0.3f, glass, 0.7f, wall);
+  CHECK(filtered.x == Approx(0.2f * 0.75f));  // min(1, 0.2)
+  CHECK(filtered.y == Approx(0.8f * 0.75f));  // min(0.8, 0.9): light is dimmer than the glass colour
+  CHECK(filtered.z == Approx(0.3f * 0.75f));
+  CHECK(dst_transparent_shadow(light, 0.9f, 0.0f, 0.3f, glass, 0.7f, wall) == glm::vec3(0.0f));  // behind the wall
+  // The samples may come in either order: the lower alpha is the glass.
+  CHECK(dst_transparent_shadow(light, 0.5f, 0.0f, 0.7f, wall, 0.3f, glass) == filtered);
+  // At d_maxA exactly the point is lit through the glass (d_minA < d <= d_maxA); the bias moves it nearer.
+  CHECK(dst_transparent_shadow(light, 0.7f, 0.0f, 0.3f, glass, 0.7f, wall) == filtered);
+  CHECK(dst_transparent_shadow(light, 0.75f, 0.1f, 0.3f, glass, 0.7f, wall) == filtered);
+  CHECK(dst_transparent_shadow(light, 0.35f, 0.1f, 0.3f, glass, 0.7f, wall) == light);
+  // Plain shadow maps: in or out.
+  CHECK(dst_opaque_shadow(light, 0.5f, 0.0f, 0.3f) == glm::vec3(0.0f));
+  CHECK(dst_opaque_shadow(light, 0.5f, 0.0f, 0.6f) == light);
+  CHECK(dst_opaque_shadow(light, 0.5f, 0.25f, 0.3f) == light);
+}
+
+TEST_CASE("refraction offset, depth rejection and the compose blend (Eq. 3.3)", "[refraction]") {
+  CHECK(dst_refraction_offset(glm::vec3(0.5f, 0.25f, 0.8f), 8.0f) == glm::vec2(4.0f, -2.0f));
+  CHECK(dst_refraction_offset(glm::vec3(0.5f, 0.25f, 0.8f), 0.0f) == glm::vec2(0.0f));
+  CHECK(dst_refraction_rejected(0.6f, 0.4f));        // the glass is behind the sample: a leak
+  CHECK_FALSE(dst_refraction_rejected(0.4f, 0.6f));
+  CHECK_FALSE(dst_refraction_rejected(0.5f, 0.5f));  // equal depths are not a leak
+
+  surface o = dst_surface_zero(), t = dst_surface_zero();
+  o.diffuse = {1.0f, 1.0f, 1.0f};
+  o.spec_intensity = 0.5f;
+  t.diffuse = {0.0f, 1.0f, 0.0f};
+  t.alpha = 0.25f;
+  light_sample lo = dst_light_sample_zero(), lt = dst_light_sample_zero();
+  lo.light = {0.5f, 0.5f, 0.5f};
+  lo.specular = 0.2f;
+  lt.light = {1.0f, 1.0f, 1.0f};
+  const glm::vec3 ambient(0.1f);
+  CHECK(dst_shade(o, lo, ambient) == glm::vec3(0.6f + 0.1f));
+  const glm::vec3 c = dst_compose(o, lo, t, lt, ambient);
+  CHECK(c.x == Approx(0.7f * 0.75f));
+  CHECK(c.y == Approx(0.7f * 0.75f + 1.1f * 0.25f));
+  // alpha 0 shows only the background; alpha 1 only the surface.
+  t.alpha = 0.0f;
+  CHECK(dst_compose(o, lo, t, lt, ambient) == dst_shade(o, lo, ambient));
+  t.alpha = 1.0f;
+  CHECK(dst_compose(o, lo, t, lt, ambient) == dst_shade(t, lt, ambient));
+}
