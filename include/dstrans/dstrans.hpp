@@ -19,5 +19,6 @@
 #include "phong.hpp"
 #include "refraction.hpp"
 #include "result.hpp"
+#include "scene.hpp"
 #include "surface.hpp"
 #include "transparent_shadow.hpp"

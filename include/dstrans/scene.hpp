@@ -1,0 +1,193 @@
+// A scene as the renderers take it: procedural shapes placed in the world, materials, lights, a camera.
+// Loading a scene file is the tools' business (tools/scene_json.hpp); this header knows no file format.
+//
+//   dstrans::scene s;
+//   s.materials.push_back({{0.2f, 0.6f, 1.0f}, 0.4f, 0.8f, 64.0f, true});              // blue glass
+//   s.objects.push_back({dstrans::shape_pane({2.0f, 1.5f}), glm::mat4(1.0f), 0});
+//   s.lights.push_back(dstrans::light{});                                                // white sun
+//   dstrans::scene_mesh m = dstrans::flatten(s);   // one world-space vertex array for one draw call
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace dstrans {
+
+// Triangles with per-vertex normals, counter-clockwise seen from the side the normals point to.
+struct shape {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<std::uint32_t> indices;
+  std::size_t triangles() const { return indices.size() / 3; }
+};
+
+struct material {
+  glm::vec3 diffuse{0.8f};
+  float alpha = 1.0f;            // below 1: transparent
+  float spec_intensity = 0.0f;   // [0, 1]
+  float spec_power = 16.0f;      // [0, 255]
+  bool refractive = false;
+  bool transparent() const { return alpha < 1.0f; }
+};
+
+enum class light_kind { directional, point, spot };
+
+struct light {
+  light_kind kind = light_kind::directional;
+  glm::vec3 colour{1.0f};
+  float intensity = 1.0f;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // where a directional or spot light shines
+  float range = 10.0f;                     // point and spot: no light at and past this distance
+  float inner_angle = 20.0f;               // spot: full light within, degrees from the axis
+  float outer_angle = 30.0f;               // spot: no light past, at most 90
+  bool shadows = false;                    // spot lights only cast shadows (as in the thesis)
+};
+
+struct camera {
+  glm::vec3 position{0.0f, 1.5f, 5.0f};
+  glm::vec3 target{0.0f, 1.0f, 0.0f};
+  float fov_y = 60.0f;  // degrees
+  float near_plane = 0.1f, far_plane = 100.0f;
+
+  glm::mat4 view() const { return glm::lookAtRH(position, target, glm::vec3(0.0f, 1.0f, 0.0f)); }
+  // Depth 0 at the near plane and 1 at the far plane, clip-space y up: what both backends draw with.
+  glm::mat4 projection(float aspect) const {
+    return glm::perspectiveRH_ZO(glm::radians(fov_y), aspect, near_plane, far_plane);
+  }
+};
+
+struct object {
+  shape geometry;
+  glm::mat4 transform{1.0f};
+  std::uint32_t material = 0;  // index into scene::materials
+};
+
+struct scene {
+  std::vector<material> materials;
+  std::vector<object> objects;
+  std::vector<light> lights;
+  camera view;
+  glm::vec3 ambient{0.05f};
+};
+
+// A whole scene in world space, for one draw call: vertex i has positions[i], normals[i], materials[i].
+struct scene_mesh {
+  std::vector<glm::vec3> positions, normals;
+  std::vector<std::uint32_t> materials, indices;
+};
+
+inline scene_mesh flatten(const scene& s) {
+  scene_mesh m;
+  for (const object& o : s.objects) {
+    const auto base = std::uint32_t(m.positions.size());
+    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(o.transform)));
+    for (std::size_t i = 0; i < o.geometry.positions.size(); ++i) {
+      m.positions.push_back(glm::vec3(o.transform * glm::vec4(o.geometry.positions[i], 1.0f)));
+      m.normals.push_back(glm::normalize(normal_matrix * o.geometry.normals[i]));
+      m.materials.push_back(o.material);
+    }
+    for (std::uint32_t i : o.geometry.indices) m.indices.push_back(base + i);
+  }
+  return m;
+}
+
+namespace detail {
+inline void add_quad(shape& s, glm::vec3 origin, glm::vec3 u, glm::vec3 v, glm::vec3 n) {
+  const auto base = std::uint32_t(s.positions.size());
+  for (glm::vec3 p : {origin, origin + u, origin + u + v, origin + v}) {
+    s.positions.push_back(p);
+    s.normals.push_back(n);
+  }
+  s.indices.insert(s.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+}
+// Revolves a profile of (radius, height) points around +Y with `slices` segments; the normals come from
+// the profile's slope. Closed ends where the profile reaches radius 0.
+inline shape revolve(const std::vector<glm::vec2>& profile, int slices) {
+  shape s;
+  const float two_pi = 6.28318530718f;
+  for (std::size_t i = 0; i < profile.size(); ++i) {
+    const glm::vec2 prev = profile[i == 0 ? 0 : i - 1], next = profile[i + 1 < profile.size() ? i + 1 : i];
+    const glm::vec2 tangent = glm::normalize(next - prev);
+    const glm::vec2 n2(tangent.y, -tangent.x);  // outward for a profile that goes up
+    for (int k = 0; k <= slices; ++k) {
+      const float a = two_pi * float(k) / float(slices), c = std::cos(a), sn = std::sin(a);
+      s.positions.push_back({profile[i].x * c, profile[i].y, profile[i].x * sn});
+      s.normals.push_back(glm::normalize(glm::vec3(n2.x * c, n2.y, n2.x * sn)));
+    }
+  }
+  const auto ring = std::uint32_t(slices + 1);
+  for (std::uint32_t i = 0; i + 1 < profile.size(); ++i)
+    for (std::uint32_t k = 0; k < std::uint32_t(slices); ++k) {
+      const std::uint32_t a = i * ring + k, b = a + 1, c = a + ring, d = c + 1;
+      s.indices.insert(s.indices.end(), {a, c, b, b, c, d});
+    }
+  return s;
+}
+}  // namespace detail
+
+// A box of `size` centred on the origin.
+inline shape shape_box(glm::vec3 size) {
+  shape s;
+  const glm::vec3 h = size * 0.5f;
+  detail::add_quad(s, {-h.x, -h.y, h.z}, {size.x, 0, 0}, {0, size.y, 0}, {0, 0, 1});
+  detail::add_quad(s, {h.x, -h.y, -h.z}, {-size.x, 0, 0}, {0, size.y, 0}, {0, 0, -1});
+  detail::add_quad(s, {h.x, -h.y, h.z}, {0, 0, -size.z}, {0, size.y, 0}, {1, 0, 0});
+  detail::add_quad(s, {-h.x, -h.y, -h.z}, {0, 0, size.z}, {0, size.y, 0}, {-1, 0, 0});
+  detail::add_quad(s, {-h.x, h.y, h.z}, {size.x, 0, 0}, {0, 0, -size.z}, {0, 1, 0});
+  detail::add_quad(s, {-h.x, -h.y, -h.z}, {size.x, 0, 0}, {0, 0, size.z}, {0, -1, 0});
+  return s;
+}
+
+// The inside of a box: a room seen from within (normals point inwards), floor at y = 0.
+inline shape shape_room(glm::vec3 size) {
+  shape s = shape_box(size);
+  for (glm::vec3& p : s.positions) p.y += size.y * 0.5f;
+  for (glm::vec3& n : s.normals) n = -n;
+  for (std::size_t i = 0; i < s.indices.size(); i += 3) std::swap(s.indices[i + 1], s.indices[i + 2]);
+  return s;
+}
+
+// A rectangle of `size` in the XY plane facing +Z: a pane of glass (transparent materials are lit
+// from both sides).
+inline shape shape_pane(glm::vec2 size) {
+  shape s;
+  detail::add_quad(s, {-size.x * 0.5f, -size.y * 0.5f, 0.0f}, {size.x, 0, 0}, {0, size.y, 0}, {0, 0, 1});
+  return s;
+}
+
+// A sphere of `radius` from `slices` (>= 3) meridians and slices / 2 parallels.
+inline shape shape_sphere(float radius, int slices) {
+  std::vector<glm::vec2> profile;
+  const int stacks = slices / 2 > 2 ? slices / 2 : 2;
+  for (int i = 0; i <= stacks; ++i) {
+    const float a = 3.14159265359f * float(i) / float(stacks);
+    // The poles sit exactly on the axis: sin of a float pi is slightly negative, which would mirror
+    // the last ring and turn its triangles inside out.
+    const bool pole = i == 0 || i == stacks;
+    profile.push_back({pole ? 0.0f : radius * std::sin(a), -radius * std::cos(a)});
+  }
+  shape s = detail::revolve(profile, slices);
+  for (std::size_t i = 0; i < s.positions.size(); ++i) s.normals[i] = glm::normalize(s.positions[i]);
+  return s;
+}
+
+// A closed cylinder of `radius` and `height` standing on y = 0.
+inline shape shape_cylinder(float radius, float height, int slices) {
+  return detail::revolve({{0.0f, 0.0f}, {radius, 0.0f}, {radius, 0.0f}, {radius, height}, {radius, height}, {0.0f, height}},
+                         slices);
+}
+
+// A bottle made on a lathe: body, shoulder, neck and lip, `height` tall, `radius` at the body.
+inline shape shape_bottle(float radius, float height, int slices) {
+  const float r = radius, h = height;
+  return detail::revolve({{0.0f, 0.0f}, {r * 0.9f, 0.0f}, {r, 0.05f * h}, {r, 0.55f * h}, {r * 0.8f, 0.68f * h},
+                          {r * 0.35f, 0.78f * h}, {r * 0.3f, 0.95f * h}, {r * 0.38f, h}, {0.0f, h}},
+                         slices);
+}
+
+}  // namespace dstrans

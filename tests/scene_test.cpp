@@ -1,0 +1,127 @@
+// Procedural shapes, scene flattening, and scene files: good ones load, bad ones name the field.
+#include <catch2/catch.hpp>
+
+#include <map>
+
+#include <dstrans/scene.hpp>
+#include <scene_json.hpp>
+
+using namespace dstrans;
+
+namespace {
+// Each triangle's winding agrees with its vertices' normals (counter-clockwise seen from outside).
+bool wound_with_normals(const shape& s) {
+  for (std::size_t i = 0; i < s.indices.size(); i += 3) {
+    const glm::vec3 a = s.positions[s.indices[i]], b = s.positions[s.indices[i + 1]], c = s.positions[s.indices[i + 2]];
+    const glm::vec3 face = glm::cross(b - a, c - a);
+    if (glm::length(face) < 1e-9f) continue;  // degenerate seam triangles carry no winding
+    const glm::vec3 n = s.normals[s.indices[i]] + s.normals[s.indices[i + 1]] + s.normals[s.indices[i + 2]];
+    if (glm::dot(face, n) <= 0.0f) return false;
+  }
+  return true;
+}
+
+const char* const good =
+    R"({"camera": {"position": [0, 1, 5], "target": [0, 1, 0], "fov_y": 50},
+        "ambient": [0.1, 0.1, 0.1],
+        "materials": {"wall": {"diffuse": [0.8, 0.8, 0.8]},
+                      "glass": {"diffuse": [0.2, 0.5, 1.0], "alpha": 0.4, "spec_intensity": 0.9, "spec_power": 64, "refractive": true}},
+        "objects": [{"shape": "room", "size": [10, 4, 10], "material": "wall"},
+                    {"shape": "pane", "size": [2, 1.5], "position": [0, 1, 0], "rotation_y": 15, "material": "glass"},
+                    {"shape": "bottle", "radius": 0.2, "height": 0.8, "segments": 24, "material": "glass"}],
+        "lights": [{"type": "spot", "position": [0, 3, 2], "direction": [0, -1, -0.5], "colour": [1, 0.9, 0.8],
+                    "intensity": 2, "range": 8, "inner_angle": 20, "outer_angle": 30, "shadows": true},
+                   {"type": "point", "position": [1, 2, 1], "range": 5},
+                   {"type": "directional", "direction": [0.3, -1, 0.2], "intensity": 0.3}]})";
+
+// The scene `good` with `from` replaced by `to`.
+std::string edit(const std::string& from, const std::string& to) {
+  std::string s = good;
+  const std::size_t at = s.find(from);
+  REQUIRE(at != std::string::npos);
+  return s.replace(at, from.size(), to);
+}
+}  // namespace
+
+TEST_CASE("shapes are wound with their normals and have the expected size", "[scene]") {
+  const shape box = shape_box({1, 2, 3});
+  CHECK(box.triangles() == 12);
+  CHECK(wound_with_normals(box));
+  const shape room = shape_room({10, 4, 10});
+  CHECK(wound_with_normals(room));
+  for (const glm::vec3& p : room.positions) CHECK((p.y == 0.0f || p.y == 4.0f));
+  CHECK(room.normals[0] == glm::vec3(0, 0, -1));  // the back wall's inside faces the room
+  CHECK(wound_with_normals(shape_pane({2, 1})));
+  const shape sphere = shape_sphere(0.5f, 32);
+  CHECK(sphere.triangles() == 2u * 32u * 16u);
+  CHECK(wound_with_normals(sphere));
+  for (const glm::vec3& p : sphere.positions) CHECK(glm::length(p) == Approx(0.5f).margin(1e-5));
+  CHECK(wound_with_normals(shape_cylinder(0.3f, 1.0f, 16)));
+  const shape bottle = shape_bottle(0.2f, 0.8f, 24);
+  CHECK(wound_with_normals(bottle));
+  float top = 0.0f;
+  for (const glm::vec3& p : bottle.positions) top = std::max(top, p.y);
+  CHECK(top == Approx(0.8f));
+}
+
+TEST_CASE("flatten puts every object in world space with its material", "[scene]") {
+  scene s;
+  s.materials = {material{}, material{}};
+  s.objects.push_back({shape_pane({2, 2}), glm::translate(glm::mat4(1.0f), glm::vec3(5, 0, 0)), 1});
+  s.objects.push_back({shape_box({1, 1, 1}), glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0)), 0});
+  const scene_mesh m = flatten(s);
+  REQUIRE(m.positions.size() == 4 + 24);
+  CHECK(m.positions[0] == glm::vec3(4, -1, 0));
+  CHECK(m.materials[0] == 1);
+  CHECK(m.materials[4] == 0);
+  CHECK(m.indices.size() == 6 + 36);
+  CHECK(m.indices[6] == 4);  // the box's indices follow the pane's vertices
+  CHECK(m.normals[4].x == Approx(1.0f));  // the box's +Z face turned to +X
+}
+
+TEST_CASE("a good scene file loads", "[scene]") {
+  const auto s = parse_scene(good, "good.json");
+  REQUIRE(s);
+  CHECK(s->materials.size() == 2);
+  CHECK(s->objects.size() == 3);
+  CHECK(s->objects[1].material == 0);  // "glass" sorts before "wall"
+  CHECK(s->materials[0].transparent());
+  CHECK(s->materials[0].refractive);
+  REQUIRE(s->lights.size() == 3);
+  CHECK(s->lights[0].kind == light_kind::spot);
+  CHECK(s->lights[0].shadows);
+  CHECK(glm::length(s->lights[0].direction) == Approx(1.0f));
+  CHECK(s->lights[1].kind == light_kind::point);
+  CHECK(s->view.fov_y == 50.0f);
+  CHECK(s->ambient == glm::vec3(0.1f));
+}
+
+TEST_CASE("bad scene files get an error that names the field", "[scene]") {
+  const std::map<std::string, std::string> cases{
+      {edit("\"fov_y\": 50", "\"fov_y\": \"wide\""), "good.json: camera.fov_y: expected a number, got \"wide\""},
+      {edit("\"target\": [0, 1, 0], ", ""), "good.json: camera.target: missing"},
+      {edit("\"size\": [2, 1.5]", "\"size\": [2, -1.5]"), "good.json: objects[1].size[1]: -1.5 is outside"},
+      {edit("\"size\": [2, 1.5]", "\"size\": [2, 1.5, 3]"), "good.json: objects[1].size: expected an array of 2 numbers"},
+      {edit("\"radius\": 0.2", "\"radius\": 1e999"), "good.json: not valid JSON: [json.exception.out_of_range.406] number overflow parsing '1e999'"},
+      {edit("\"rotation_y\": 15", "\"rotaton_y\": 15"), "good.json: objects[1].rotaton_y: unknown key"},
+      {edit("\"material\": \"wall\"", "\"material\": \"brick\""), "good.json: objects[0].material: unknown material 'brick'"},
+      {edit("\"shape\": \"room\"", "\"shape\": \"torus\""), "good.json: objects[0].shape: unknown shape 'torus'"},
+      {edit("\"outer_angle\": 30", "\"outer_angle\": 120"), "good.json: lights[0].outer_angle: 120"},
+      {edit("\"type\": \"point\"", "\"type\": \"area\""), "good.json: lights[1].type: unknown light type 'area'"},
+      {edit("\"alpha\": 0.4", "\"alpha\": NaN"), "good.json: not valid JSON"},
+      {edit("\"shadows\": true", "\"shadows\": 1"), "good.json: lights[0].shadows: expected true or false"},
+      {edit("\"direction\": [0.3, -1, 0.2]", "\"direction\": [0, 0, 0]"), "good.json: lights[2].direction: must not be zero"},
+      {R"({"camera": {"position": [0, 1, 5], "target": [0, 1, 0]}, "materials": {"a": {}}, "objects": []})",
+       "good.json: objects: expected an array with at least one object"},
+      {"[]", "good.json: expected an object"},
+  };
+  for (const auto& [text, message] : cases) {
+    const auto s = parse_scene(text, "good.json");
+    INFO(message);
+    REQUIRE_FALSE(s);
+    CHECK_THAT(s.error(), Catch::StartsWith(message));
+  }
+  const auto missing = load_scene("no/such/scene.json");
+  REQUIRE_FALSE(missing);
+  CHECK(missing.error() == "no/such/scene.json: cannot read the scene file");
+}

@@ -1,0 +1,222 @@
+// Implements scene_json.hpp with nlohmann-json.
+#include "scene_json.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace dstrans {
+
+namespace {
+
+using json = nlohmann::json;
+
+struct bad_field {
+  std::string message;
+};
+
+// A JSON object being read: every key read is remembered, so that the rest can be reported as unknown.
+class reader {
+ public:
+  reader(const json& j, std::string path) : j_(j), path_(std::move(path)) {
+    if (!j_.is_object()) throw bad_field{where() + "expected an object"};
+  }
+
+  bool has(const std::string& key) {
+    read_.insert(key);
+    return j_.contains(key);
+  }
+
+  float number(const std::string& key, float fallback, float lo, float hi) {
+    if (!has(key)) return fallback;
+    return number_at(j_[key], field(key), lo, hi);
+  }
+  float number(const std::string& key, float lo, float hi) {
+    require(key);
+    return number(key, 0.0f, lo, hi);
+  }
+  template <int N>
+  glm::vec<N, float> vec(const std::string& key, glm::vec<N, float> fallback, float lo, float hi) {
+    if (!has(key)) return fallback;
+    const json& v = j_[key];
+    if (!v.is_array() || v.size() != N)
+      throw bad_field{field(key) + ": expected an array of " + std::to_string(N) + " numbers, got " + v.dump()};
+    glm::vec<N, float> out;
+    for (int i = 0; i < N; ++i) out[i] = number_at(v[std::size_t(i)], field(key) + "[" + std::to_string(i) + "]", lo, hi);
+    return out;
+  }
+  template <int N>
+  glm::vec<N, float> vec(const std::string& key, float lo, float hi) {
+    require(key);
+    return vec<N>(key, glm::vec<N, float>(0.0f), lo, hi);
+  }
+  bool boolean(const std::string& key, bool fallback) {
+    if (!has(key)) return fallback;
+    if (!j_[key].is_boolean()) throw bad_field{field(key) + ": expected true or false, got " + j_[key].dump()};
+    return j_[key].get<bool>();
+  }
+  std::string text(const std::string& key) {
+    require(key);
+    if (!j_[key].is_string()) throw bad_field{field(key) + ": expected a string, got " + j_[key].dump()};
+    return j_[key].get<std::string>();
+  }
+  const json& raw(const std::string& key) {
+    require(key);
+    return j_[key];
+  }
+  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  // Call when done: any key that was never read is a mistake in the file.
+  void finish() const {
+    for (const auto& [key, value] : j_.items())
+      if (!read_.count(key)) throw bad_field{field(key) + ": unknown key"};
+  }
+
+ private:
+  std::string where() const { return path_.empty() ? "" : path_ + ": "; }
+  void require(const std::string& key) {
+    if (!has(key)) throw bad_field{field(key) + ": missing"};
+  }
+  static float number_at(const json& v, const std::string& name, float lo, float hi) {
+    if (!v.is_number()) throw bad_field{name + ": expected a number, got " + v.dump()};
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) throw bad_field{name + ": must be finite"};
+    if (d < lo || d > hi)
+      throw bad_field{name + ": " + v.dump() + " is outside [" + json(lo).dump() + ", " + json(hi).dump() + "]"};
+    return float(d);
+  }
+
+  const json& j_;
+  std::string path_;
+  std::set<std::string> read_;
+};
+
+constexpr float big = 1e6f;
+
+material read_material(reader& r) {
+  material m;
+  m.diffuse = r.vec<3>("diffuse", m.diffuse, 0.0f, 1.0f);
+  m.alpha = r.number("alpha", 1.0f, 0.0f, 1.0f);
+  m.spec_intensity = r.number("spec_intensity", 0.0f, 0.0f, 1.0f);
+  m.spec_power = r.number("spec_power", 16.0f, 0.0f, 255.0f);
+  m.refractive = r.boolean("refractive", false);
+  r.finish();
+  return m;
+}
+
+object read_object(reader& r, const std::map<std::string, std::uint32_t>& materials) {
+  object o;
+  const std::string kind = r.text("shape");
+  const std::string name = r.text("material");
+  const auto it = materials.find(name);
+  if (it == materials.end()) throw bad_field{r.field("material") + ": unknown material '" + name + "'"};
+  o.material = it->second;
+  const float tiny = 1e-4f;
+  auto segments = [&] { return int(r.number("segments", 32.0f, 3.0f, 512.0f)); };
+  if (kind == "box") o.geometry = shape_box(r.vec<3>("size", tiny, big));
+  else if (kind == "room") o.geometry = shape_room(r.vec<3>("size", tiny, big));
+  else if (kind == "pane") o.geometry = shape_pane(r.vec<2>("size", tiny, big));
+  else if (kind == "sphere") o.geometry = shape_sphere(r.number("radius", tiny, big), segments());
+  else if (kind == "cylinder") {
+    const float radius = r.number("radius", tiny, big), height = r.number("height", tiny, big);
+    o.geometry = shape_cylinder(radius, height, segments());
+  } else if (kind == "bottle") {
+    const float radius = r.number("radius", tiny, big), height = r.number("height", tiny, big);
+    o.geometry = shape_bottle(radius, height, segments());
+  } else {
+    throw bad_field{r.field("shape") + ": unknown shape '" + kind + "' (box, room, pane, sphere, cylinder, bottle)"};
+  }
+  const glm::vec3 position = r.vec<3>("position", glm::vec3(0.0f), -big, big);
+  const float rotation = r.number("rotation_y", 0.0f, -360.0f, 360.0f);
+  o.transform = glm::rotate(glm::translate(glm::mat4(1.0f), position), glm::radians(rotation), glm::vec3(0, 1, 0));
+  r.finish();
+  return o;
+}
+
+light read_light(reader& r) {
+  light l;
+  const std::string kind = r.text("type");
+  if (kind == "directional") l.kind = light_kind::directional;
+  else if (kind == "point") l.kind = light_kind::point;
+  else if (kind == "spot") l.kind = light_kind::spot;
+  else throw bad_field{r.field("type") + ": unknown light type '" + kind + "' (directional, point, spot)"};
+  l.colour = r.vec<3>("colour", l.colour, 0.0f, big);
+  l.intensity = r.number("intensity", 1.0f, 0.0f, big);
+  if (l.kind != light_kind::directional) l.position = r.vec<3>("position", -big, big);
+  if (l.kind != light_kind::point) {
+    l.direction = r.vec<3>("direction", -big, big);
+    if (glm::length(l.direction) < 1e-6f) throw bad_field{r.field("direction") + ": must not be zero"};
+    l.direction = glm::normalize(l.direction);
+  }
+  if (l.kind != light_kind::directional) l.range = r.number("range", 1e-3f, big);
+  if (l.kind == light_kind::spot) {
+    l.outer_angle = r.number("outer_angle", 30.0f, 0.0f, 90.0f);
+    l.inner_angle = r.number("inner_angle", l.outer_angle, 0.0f, l.outer_angle);
+    l.shadows = r.boolean("shadows", false);
+  }
+  r.finish();
+  return l;
+}
+
+}  // namespace
+
+result<scene> parse_scene(const std::string& text, const std::string& name) {
+  try {
+    const json root = json::parse(text);
+    reader top(root, "");
+    scene s;
+    {
+      reader c(top.raw("camera"), "camera");
+      s.view.position = c.vec<3>("position", -big, big);
+      s.view.target = c.vec<3>("target", -big, big);
+      if (glm::length(s.view.target - s.view.position) < 1e-6f) throw bad_field{"camera.target: must differ from camera.position"};
+      s.view.fov_y = c.number("fov_y", 60.0f, 1.0f, 179.0f);
+      s.view.near_plane = c.number("near", 0.1f, 1e-4f, big);
+      s.view.far_plane = c.number("far", 100.0f, s.view.near_plane * 1.001f, big);
+      c.finish();
+    }
+    s.ambient = top.vec<3>("ambient", s.ambient, 0.0f, 1.0f);
+    std::map<std::string, std::uint32_t> materials;
+    const json& mats = top.raw("materials");
+    if (!mats.is_object() || mats.empty()) throw bad_field{"materials: expected an object with at least one material"};
+    for (const auto& [key, value] : mats.items()) {
+      reader m(value, "materials." + key);
+      materials[key] = std::uint32_t(s.materials.size());
+      s.materials.push_back(read_material(m));
+    }
+    const json& objs = top.raw("objects");
+    if (!objs.is_array() || objs.empty()) throw bad_field{"objects: expected an array with at least one object"};
+    for (std::size_t i = 0; i < objs.size(); ++i) {
+      reader o(objs[i], "objects[" + std::to_string(i) + "]");
+      s.objects.push_back(read_object(o, materials));
+    }
+    if (top.has("lights")) {
+      const json& lights = root["lights"];
+      if (!lights.is_array()) throw bad_field{"lights: expected an array"};
+      for (std::size_t i = 0; i < lights.size(); ++i) {
+        reader l(lights[i], "lights[" + std::to_string(i) + "]");
+        s.lights.push_back(read_light(l));
+      }
+    }
+    top.finish();
+    return s;
+  } catch (const json::exception& e) {
+    return failure{name + ": not valid JSON: " + e.what()};
+  } catch (const bad_field& e) {
+    return failure{name + ": " + e.message};
+  }
+}
+
+result<scene> load_scene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return failure{path + ": cannot read the scene file"};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path);
+}
+
+}  // namespace dstrans

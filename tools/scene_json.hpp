@@ -1,0 +1,32 @@
+// Scene files (examples/scenes/*.json) into dstrans::scene, with an error that names the offending field.
+//
+//   auto s = dstrans::load_scene("examples/scenes/glass_room.json");
+//   if (!s) std::fprintf(stderr, "%s\n", s.error().c_str());   // "glass_room.json: objects[3].size[1]: ..."
+//
+// The format (every key is checked; unknown keys are errors, so a typo does not pass silently):
+//   {"camera": {"position": [x,y,z], "target": [x,y,z], "fov_y": deg, "near": n, "far": f},
+//    "ambient": [r,g,b],
+//    "materials": {"name": {"diffuse": [r,g,b], "alpha": a, "spec_intensity": s, "spec_power": p,
+//                           "refractive": bool}, ...},
+//    "objects": [{"shape": "box"|"room"|"pane"|"sphere"|"cylinder"|"bottle", "material": "name",
+//                 "position": [x,y,z], "rotation_y": deg, shape parameters...}, ...],
+//    "lights": [{"type": "directional"|"point"|"spot", "colour": [r,g,b], "intensity": i,
+//                "position": [x,y,z], "direction": [x,y,z], "range": r, "inner_angle": deg,
+//                "outer_angle": deg, "shadows": bool}, ...]}
+// Shape parameters: box and room "size": [x,y,z]; pane "size": [w,h]; sphere "radius"; cylinder and
+// bottle "radius", "height"; sphere, cylinder and bottle "segments" (default 32).
+#pragma once
+
+#include <string>
+
+#include <dstrans/result.hpp>
+#include <dstrans/scene.hpp>
+
+namespace dstrans {
+
+// The scene in file `path`, or a sentence naming the file and field that is wrong.
+result<scene> load_scene(const std::string& path);
+// The scene in JSON text `text`; `name` prefixes error messages.
+result<scene> parse_scene(const std::string& text, const std::string& name);
+
+}  // namespace dstrans
