@@ -20,5 +20,6 @@ int to_int(const std::string& text, int lo, int hi, const std::string& what);
 // Subcommands: each takes the arguments after its name and returns the exit code.
 int gen(std::vector<std::string> args);
 int eval(std::vector<std::string> args);
+int render(std::vector<std::string> args);
 
 }  // namespace dstrans::cli

@@ -12,6 +12,7 @@ const char* const usage =
     "commands:\n"
     "  gen <what> [options]   print GLSL: gbuffer <layout>, interlace <predicate>\n"
     "  eval --backend B       evaluate shared formulas by name on cpu, gl or vk (JSON lines)\n"
+    "  render <scene.json>    render a frame and its buffers into --out DIR\n"
     "run 'dstrans <command> --help' for a command's options\n";
 
 }  // namespace
@@ -55,6 +56,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   if (command == "gen") return dstrans::cli::gen(args);
   if (command == "eval") return dstrans::cli::eval(args);
+  if (command == "render") return dstrans::cli::render(args);
   std::fprintf(stderr, "dstrans: unknown command '%s'\n%s", command.c_str(), usage);
   return 2;
 }

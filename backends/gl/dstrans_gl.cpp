@@ -197,14 +197,15 @@ void draw_fullscreen(GLuint empty_vertex_array) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-timer::timer() { glCreateQueries(GL_TIME_ELAPSED, 1, &query_); }
-timer::~timer() { glDeleteQueries(1, &query_); }
-void timer::begin() { glBeginQuery(GL_TIME_ELAPSED, query_); }
-void timer::end() { glEndQuery(GL_TIME_ELAPSED); }
+timer::timer() { glCreateQueries(GL_TIMESTAMP, 2, queries_); }
+timer::~timer() { glDeleteQueries(2, queries_); }
+void timer::begin() { glQueryCounter(queries_[0], GL_TIMESTAMP); }
+void timer::end() { glQueryCounter(queries_[1], GL_TIMESTAMP); }
 double timer::milliseconds() const {
-  GLuint64 ns = 0;
-  glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
-  return double(ns) * 1e-6;
+  GLuint64 ns[2] = {0, 0};
+  glGetQueryObjectui64v(queries_[0], GL_QUERY_RESULT, &ns[0]);
+  glGetQueryObjectui64v(queries_[1], GL_QUERY_RESULT, &ns[1]);
+  return ns[1] > ns[0] ? double(ns[1] - ns[0]) * 1e-6 : 0.0;
 }
 
 void label(GLenum identifier, GLuint name, const std::string& text) {

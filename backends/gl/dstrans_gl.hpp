@@ -78,7 +78,8 @@ void draw(const mesh& m);
 // vertex array with no attributes (core profiles draw nothing without one).
 void draw_fullscreen(GLuint empty_vertex_array);
 
-// GPU time between begin() and end(), from a GL_TIME_ELAPSED query.
+// GPU time between begin() and end(), from two GL_TIMESTAMP queries (llvmpipe's first GL_TIME_ELAPSED
+// query in a context measures from the context's creation, so dstrans does not use that kind).
 class timer {
  public:
   timer();
@@ -91,7 +92,7 @@ class timer {
   double milliseconds() const;
 
  private:
-  GLuint query_ = 0;
+  GLuint queries_[2] = {0, 0};
 };
 
 // Names a GL object for frame captures and debug messages (KHR_debug).

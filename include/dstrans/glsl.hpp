@@ -123,13 +123,19 @@ class source {
     if (!text.empty() && text.back() != '\n') code_ += '\n';
   }
 
-  // Appends the text of file `path` (a hand-written pass shader), its lines mapped to that file; a
-  // failure if it cannot be read.
+  // Appends the text of file `path` (a hand-written pass shader), its lines mapped to that file, after
+  // the shared blocks it calls; a failure if it cannot be read.
   result<bool> add_file(const std::string& path) {
     std::ifstream in(path);
     if (!in) return failure{"cannot read GLSL file " + path};
     std::ostringstream text;
     text << in.rdbuf();
+    for (const shared_text* block : detail::shared_blocks())
+      for (const std::string& name : definitions(block->code))
+        if (uses(text.str(), name)) {
+          add_shared(*block);
+          break;
+        }
     add(text.str(), path, 1);
     return true;
   }

@@ -1,0 +1,87 @@
+// Implements frame_data.hpp.
+#include "frame_data.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dstrans::render {
+
+namespace {
+// Cones wider than this are drawn as spheres: a cone's mesh grows without bound towards 90 degrees.
+constexpr float widest_cone = 60.0f;
+
+glm::mat4 spot_view(const light& l) {
+  const glm::vec3 up = std::fabs(l.direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  return glm::lookAtRH(l.position, l.position + l.direction, up);
+}
+}  // namespace
+
+volume volume_of(const light& l) {
+  if (l.kind == light_kind::directional) return volume::fullscreen;
+  if (l.kind == light_kind::spot && l.outer_angle <= widest_cone) return volume::cone;
+  return volume::sphere;
+}
+
+frame_block camera_frame(const scene& s, const options& o) {
+  frame_block f{};
+  f.view = s.view.view();
+  f.view_proj = s.view.projection(float(o.width) / float(o.height)) * f.view;
+  f.inv_view_proj = glm::inverse(f.view_proj);
+  f.camera_position = glm::vec4(s.view.position, 1.0f);
+  f.ambient = glm::vec4(s.ambient, 0.0f);
+  f.size = {o.width, o.height, o.shadow_size, o.shadow_size};
+  f.params = {o.refraction, o.shadow_bias, 0.0f, 0.0f};
+  return f;
+}
+
+frame_block light_frame(const scene& s, const light& l, const options& o) {
+  frame_block f = camera_frame(s, o);
+  // The shadow map covers the outer cone; a 90-degree spot would need a 180-degree frustum, so
+  // shadow maps stop at 85 degrees and what lies outside them is lit unshadowed.
+  const float half = std::min(l.outer_angle, 85.0f);
+  f.view_proj = glm::perspectiveRH_ZO(glm::radians(2.0f * half), 1.0f, std::max(l.range * 1e-3f, 0.01f), l.range) * spot_view(l);
+  return f;
+}
+
+std::vector<material_block> material_blocks(const scene& s) {
+  std::vector<material_block> out;
+  for (const material& m : s.materials)
+    out.push_back({glm::vec4(m.diffuse, m.alpha), glm::vec4(m.spec_intensity, m.spec_power, m.refractive ? 1.0f : 0.0f, 0.0f)});
+  return out;
+}
+
+std::vector<light_block> light_blocks(const scene& s, const options& o) {
+  std::vector<light_block> out;
+  for (const light& l : s.lights) {
+    light_block b{};
+    const float kind = l.kind == light_kind::directional ? 0.0f : l.kind == light_kind::point ? 1.0f : 2.0f;
+    b.position_range = glm::vec4(l.position, l.range);
+    b.direction_kind = glm::vec4(l.direction, kind);
+    b.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
+    b.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), l.shadows && l.kind == light_kind::spot ? 1.0f : 0.0f, 0, 0);
+    if (l.kind == light_kind::spot) b.shadow_view_proj = light_frame(s, l, o).view_proj;
+    switch (volume_of(l)) {
+      case volume::fullscreen: b.volume = glm::mat4(1.0f); break;
+      case volume::sphere: b.volume = glm::scale(glm::translate(glm::mat4(1.0f), l.position), glm::vec3(l.range)); break;
+      case volume::cone: {
+        // The unit cone opens along +Z; a half turn about Y points it down the view space -Z, which the
+        // inverse view turns to the light's direction (a rotation: the winding stays outward).
+        const float r = l.range * std::tan(glm::radians(l.outer_angle));
+        const glm::mat4 turn = glm::inverse(spot_view(l)) * glm::scale(glm::mat4(1.0f), glm::vec3(-1, 1, -1));
+        b.volume = turn * glm::scale(glm::mat4(1.0f), glm::vec3(r, r, l.range));
+        break;
+      }
+    }
+    out.push_back(b);
+  }
+  return out;
+}
+
+bool camera_inside(const scene& s, const light& l) {
+  if (l.kind == light_kind::directional) return true;
+  // The meshes stay within 1.3 times the light's range (sphere_mesh(1) reaches 1.26 at its corners).
+  return glm::length(s.view.position - l.position) < 1.3f * l.range /
+                                                          (volume_of(l) == volume::cone ? std::cos(glm::radians(l.outer_angle)) : 1.0f);
+}
+
+}  // namespace dstrans::render

@@ -1,0 +1,53 @@
+// What the renderers upload for a scene, laid out as shaders/glsl/frame.glsl declares it (std140 for the
+// frame block, std430 for materials and lights), and the per-frame options both backends share.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <dstrans/interlace.hpp>
+#include <dstrans/light_mesh.hpp>
+#include <dstrans/scene.hpp>
+
+namespace dstrans::render {
+
+enum class shadow_mode { off, opaque, transparent };
+
+struct options {
+  int width = 320, height = 180;
+  float refraction = 8.0f;      // strength in pixels; 0 turns refraction off
+  float shadow_bias = 0.0005f;  // in shadow-map depth units, towards the light
+  int shadow_size = 512;
+  shadow_mode shadows = shadow_mode::transparent;  // for spot lights that cast them
+};
+
+struct frame_block {
+  glm::mat4 view_proj, inv_view_proj, view;
+  glm::vec4 camera_position, ambient;
+  glm::ivec4 size;
+  glm::vec4 params;
+};
+
+struct material_block {
+  glm::vec4 diffuse_alpha, specular;
+};
+
+struct light_block {
+  glm::vec4 position_range, direction_kind, colour_cos_outer, cos_inner;
+  glm::mat4 shadow_view_proj, volume;
+};
+
+// The camera's frame block for an image of `o.width` x `o.height`.
+frame_block camera_frame(const scene& s, const options& o);
+// The same, seen from spot light `l` (its shadow map's view and projection).
+frame_block light_frame(const scene& s, const light& l, const options& o);
+std::vector<material_block> material_blocks(const scene& s);
+std::vector<light_block> light_blocks(const scene& s, const options& o);
+// Whether the camera may be inside light `l`'s volume mesh (conservative: then the volume is drawn with
+// its back faces, which is right either way).
+bool camera_inside(const scene& s, const light& l);
+// The volume mesh a light is drawn with: none (full screen) for directional lights.
+enum class volume { fullscreen, sphere, cone };
+volume volume_of(const light& l);
+
+}  // namespace dstrans::render

@@ -1,0 +1,56 @@
+// Implements frame_output.hpp with stb_image_write and nlohmann-json.
+#include "frame_output.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
+
+namespace dstrans::render {
+
+image to_image(const std::vector<texel>& texels, format f, int width, int height, view_as how, float near_plane,
+               float far_plane) {
+  image out{width, height, std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * 4)};
+  auto byte = [](float v) { return std::uint8_t(unorm_encode(v, 8)); };
+  for (std::size_t i = 0; i < texels.size(); ++i) {
+    const glm::vec4 v = decode(f, texels[i]);
+    glm::vec3 c(v);
+    if (how == view_as::alpha) c = glm::vec3(v.w);
+    if (how == view_as::depth) {
+      const float z = near_plane * far_plane / (far_plane - v.x * (far_plane - near_plane));
+      c = glm::vec3(v.x >= 1.0f ? 1.0f : z / far_plane);
+    }
+    for (int k = 0; k < 3; ++k) out.rgba[4 * i + std::size_t(k)] = byte(c[k]);
+    out.rgba[4 * i + 3] = 255;
+  }
+  return out;
+}
+
+result<bool> write_frame(const frame& f, const std::string& dir, const std::string& technique, const std::string& backend) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return failure{dir + ": cannot create the output folder: " + ec.message()};
+  auto png = [&](const std::string& name, const image& img) -> result<bool> {
+    const std::string path = dir + "/" + name + ".png";
+    if (!stbi_write_png(path.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4))
+      return failure{path + ": cannot write the image"};
+    return true;
+  };
+  if (auto ok = png("final", f.final_image); !ok) return ok;
+  for (const auto& [name, img] : f.buffers)
+    if (auto ok = png(name, img); !ok) return ok;
+  nlohmann::ordered_json j{{"technique", technique}, {"backend", backend}, {"width", f.final_image.width},
+                           {"height", f.final_image.height}, {"pass_ms", f.pass_ms}, {"frame_ms", f.frame_ms}};
+  std::ofstream out(dir + "/frame.json");
+  out << j.dump(2) << "\n";
+  if (!out) return failure{dir + "/frame.json: cannot write: " + std::strerror(errno)};
+  return true;
+}
+
+}  // namespace dstrans::render

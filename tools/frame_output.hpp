@@ -1,0 +1,41 @@
+// What a rendered frame leaves behind: the final image, the intermediate buffers as images, and the GPU
+// time of each pass; written as final.png, <buffer>.png and frame.json.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <dstrans/format.hpp>
+#include <dstrans/result.hpp>
+
+namespace dstrans::render {
+
+// 8-bit RGBA, rows from the top.
+struct image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;
+};
+
+struct frame {
+  image final_image;
+  std::vector<std::pair<std::string, image>> buffers;  // in the order the passes make them
+  std::map<std::string, double> pass_ms;
+  double frame_ms = 0.0;
+};
+
+// What each channel of a buffer shows in its picture.
+enum class view_as { rgb, alpha, depth };
+
+// Texels of a target (rows from the top) as a picture: colour channels as stored, one channel as grey,
+// or window depth as linear distance from `near_plane` to `far_plane` (white at the far plane, as the
+// thesis's Figure 4.3).
+image to_image(const std::vector<texel>& texels, format f, int width, int height, view_as how, float near_plane = 0.1f,
+               float far_plane = 100.0f);
+
+// Writes final.png, one PNG per buffer and frame.json into `dir` (created if missing).
+result<bool> write_frame(const frame& f, const std::string& dir, const std::string& technique, const std::string& backend);
+
+}  // namespace dstrans::render

@@ -1,0 +1,94 @@
+// Implements passes.hpp.
+#include "passes.hpp"
+
+#include <dstrans/fullscreen.hpp>
+
+namespace dstrans::render {
+
+namespace {
+
+using I = interlace::rows;
+
+// `src` with the frame interface (and the fragment helpers, for fragment shaders) and then pass shader
+// `file` appended; a failure if a file is missing.
+result<bool> finish(glsl::source& src, const std::string& dir, const std::string& file) {
+  const bool fragment = file.find(".frag.") != std::string::npos;
+  for (const std::string& f : {std::string("frame.glsl"), std::string(fragment ? "fragment.glsl" : ""), file})
+    if (!f.empty())
+      if (auto ok = src.add_file(dir + "/" + f); !ok) return ok;
+  return true;
+}
+
+void add_shadow_layout(glsl::source& src, shadow_mode mode, glsl::side side) {
+  glsl::layout_options o;
+  o.sides = side;
+  o.first_binding = shadow_binding;
+  if (mode == shadow_mode::transparent) glsl::add_layout<thesis_shadow_map>(src, "shadow", o);
+  else glsl::add_layout<opaque_shadow_map>(src, "shadow", o);
+}
+
+const char* shadow_define(shadow_mode mode) {
+  return mode == shadow_mode::transparent ? "#define DST_TRANSPARENT_SHADOWS\n"
+         : mode == shadow_mode::opaque    ? "#define DST_OPAQUE_SHADOWS\n"
+                                          : "";
+}
+
+result<pass_sources> scene_vertex(const std::string& dir, pass_sources p) {
+  if (auto ok = finish(p.vertex, dir, "gbuffer.vert.glsl"); !ok) return failure{ok.error()};
+  return p;
+}
+
+}  // namespace
+
+result<pass_sources> gbuffer_pass(const std::string& dir) {
+  pass_sources p;
+  glsl::layout_options o;
+  o.sides = glsl::side::write;
+  glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", o);
+  glsl::add_interlace<I>(p.fragment);
+  if (auto ok = finish(p.fragment, dir, "gbuffer.frag.glsl"); !ok) return failure{ok.error()};
+  return scene_vertex(dir, std::move(p));
+}
+
+result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode) {
+  pass_sources p;
+  p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
+  add_shadow_layout(p.fragment, mode, glsl::side::write);
+  glsl::add_interlace<I>(p.fragment);
+  if (auto ok = finish(p.fragment, dir, "shadow.frag.glsl"); !ok) return failure{ok.error()};
+  return scene_vertex(dir, std::move(p));
+}
+
+result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume) {
+  pass_sources p;
+  if (volume) p.vertex.add("#define DST_LIGHT_VOLUME\n", __FILE__, __LINE__);
+  p.vertex.add_shared(text::dst_fullscreen);
+  if (auto ok = finish(p.vertex, dir, "light.vert.glsl"); !ok) return failure{ok.error()};
+  p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
+  glsl::layout_options read;
+  read.sides = glsl::side::read;
+  read.first_binding = gbuffer_binding;
+  glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
+  glsl::layout_options write;
+  write.sides = glsl::side::write;
+  glsl::add_layout<thesis_light_buffer>(p.fragment, "light", write);
+  if (mode != shadow_mode::off) add_shadow_layout(p.fragment, mode, glsl::side::read);
+  glsl::add_interlace<I>(p.fragment);
+  if (auto ok = finish(p.fragment, dir, "light.frag.glsl"); !ok) return failure{ok.error()};
+  return p;
+}
+
+result<pass_sources> compose_pass(const std::string& dir) {
+  pass_sources p{glsl::fullscreen_vertex_shader(), {}};
+  glsl::layout_options read;
+  read.sides = glsl::side::read;
+  read.first_binding = gbuffer_binding;
+  glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
+  read.first_binding = light_binding;
+  glsl::add_layout<thesis_light_buffer>(p.fragment, "light", read);
+  glsl::add_interlace<I>(p.fragment);
+  if (auto ok = finish(p.fragment, dir, "compose.frag.glsl"); !ok) return failure{ok.error()};
+  return p;
+}
+
+}  // namespace dstrans::render

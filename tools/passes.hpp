@@ -1,0 +1,31 @@
+// The GLSL of each pass of the thesis's renderer: generated layout code, the interlace predicate, and the
+// hand-written pass shaders of shaders/glsl/, which bring the shared formulas they call.
+#pragma once
+
+#include <string>
+
+#include <dstrans/gbuffer.hpp>
+#include <dstrans/glsl.hpp>
+#include <dstrans/result.hpp>
+
+#include "frame_data.hpp"
+
+namespace dstrans::render {
+
+// Table 3.3 for transparent shadows; a plain depth map for opaque ones.
+using opaque_shadow_map = layout<surface, target<format::r32f, field::depth>>;
+
+// Texture bindings: the G-buffer's four targets, the shadow map's two, the light buffer.
+constexpr int gbuffer_binding = 0, shadow_binding = 4, light_binding = 6;
+
+struct pass_sources {
+  glsl::source vertex, fragment;
+};
+
+// `dir` is the folder of the pass shaders (shaders/glsl).
+result<pass_sources> gbuffer_pass(const std::string& dir);
+result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode);
+result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume);
+result<pass_sources> compose_pass(const std::string& dir);
+
+}  // namespace dstrans::render

@@ -1,0 +1,82 @@
+// dstrans render: one frame of a scene on a backend, with its buffers and pass times (DESIGN.md).
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#ifdef DSTRANS_HAVE_GL
+#include <dstrans_gl_context.hpp>
+#include "render_gl.hpp"
+#endif
+
+#include "cli.hpp"
+#include "scene_json.hpp"
+
+namespace dstrans::cli {
+
+namespace {
+const char* const usage =
+    "usage: dstrans render <scene.json> --backend gl|vk --out DIR [--width W --height H] [--technique NAME]\n"
+    "       [--refraction PIXELS] [--shadows off|opaque|transparent]\n"
+    "techniques: interlaced (the thesis's single-layer method)\n"
+    "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
+}  // namespace
+
+int render(std::vector<std::string> args) {
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
+    std::fputs(usage, stdout);
+    return 0;
+  }
+  try {
+    const std::string backend = take_option(args, "--backend", "");
+    const std::string out = take_option(args, "--out", "");
+    const std::string technique = take_option(args, "--technique", "interlaced");
+    render::options o;
+    o.width = to_int(take_option(args, "--width", "320"), 1, 8192, "--width");
+    o.height = to_int(take_option(args, "--height", "180"), 1, 8192, "--height");
+    o.refraction = float(to_int(take_option(args, "--refraction", "8"), 0, 256, "--refraction"));
+    const std::string shadows = take_option(args, "--shadows", "transparent");
+    if (shadows == "off") o.shadows = render::shadow_mode::off;
+    else if (shadows == "opaque") o.shadows = render::shadow_mode::opaque;
+    else if (shadows != "transparent") throw usage_error{"--shadows must be off, opaque or transparent, not '" + shadows + "'"};
+    if (args.size() != 1) throw usage_error{"render takes one scene file"};
+    if (out.empty()) throw usage_error{"render needs --out DIR"};
+    if (technique != "interlaced") throw usage_error{"unknown technique '" + technique + "' (known: interlaced)"};
+    if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
+    const auto s = load_scene(args[0]);
+    if (!s) {
+      std::fprintf(stderr, "dstrans render: %s\n", s.error().c_str());
+      return 1;
+    }
+    result<render::frame> f = failure{"no backend"};
+    if (backend == "gl") {
+#ifdef DSTRANS_HAVE_GL
+      auto ctx = gl::headless_context::create();
+      if (!ctx) {
+        std::fprintf(stderr, "dstrans render: no OpenGL: %s\n", ctx.error().c_str());
+        return 1;
+      }
+      f = render::render_gl(*s, o, DSTRANS_SHADER_DIR);
+#else
+      f = failure{"this dstrans was built without the OpenGL backend (DSTRANS_BUILD_GL=OFF)"};
+#endif
+    } else {
+      f = failure{"the Vulkan renderer is not written yet; use --backend gl"};
+    }
+    if (!f) {
+      std::fprintf(stderr, "dstrans render: %s\n", f.error().c_str());
+      return 1;
+    }
+    if (auto ok = render::write_frame(*f, out, technique, backend); !ok) {
+      std::fprintf(stderr, "dstrans render: %s\n", ok.error().c_str());
+      return 1;
+    }
+    std::printf("dstrans render: %s on %s, %dx%d, %.2f ms: %s/final.png\n", args[0].c_str(), backend.c_str(), o.width, o.height,
+                f->frame_ms, out.c_str());
+    return 0;
+  } catch (const usage_error& e) {
+    std::fprintf(stderr, "dstrans render: %s\n%s", e.message.c_str(), usage);
+    return 2;
+  }
+}
+
+}  // namespace dstrans::cli

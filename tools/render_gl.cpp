@@ -1,0 +1,249 @@
+// Implements render_gl.hpp with the engine-facing GL backend.
+#include "render_gl.hpp"
+
+#include <memory>
+
+#include <dstrans_gl.hpp>
+
+#include "passes.hpp"
+
+namespace dstrans::render {
+
+namespace {
+
+// GL objects of one frame, released however the frame ends.
+struct resources {
+  std::vector<GLuint> buffers, vertex_arrays, programs;
+  std::vector<gl::targets> targets;
+  std::vector<gl::mesh> meshes;
+  ~resources() {
+    for (auto& t : targets) gl::destroy(t);
+    for (auto& m : meshes) gl::destroy(m);
+    if (!buffers.empty()) glDeleteBuffers(GLsizei(buffers.size()), buffers.data());
+    if (!vertex_arrays.empty()) glDeleteVertexArrays(GLsizei(vertex_arrays.size()), vertex_arrays.data());
+    for (GLuint p : programs) glDeleteProgram(p);
+  }
+  template <class T>
+  GLuint buffer(const std::vector<T>& data, const std::string& name) {
+    GLuint b = 0;
+    glCreateBuffers(1, &b);
+    glNamedBufferStorage(b, GLsizeiptr(std::max<std::size_t>(data.size(), 1) * sizeof(T)), data.empty() ? nullptr : data.data(),
+                         GL_DYNAMIC_STORAGE_BIT);
+    gl::label(GL_BUFFER, b, name);
+    buffers.push_back(b);
+    return b;
+  }
+  result<GLuint> program(const result<pass_sources>& p, const std::string& name) {
+    if (!p) return failure{p.error()};
+    auto prog = gl::make_program(p->vertex, p->fragment, name);
+    if (prog) programs.push_back(*prog);
+    return prog;
+  }
+};
+
+// Binds the per-light instance attribute (location 3) of vertex array `vao` to `indices`.
+void bind_light_index(GLuint vao, GLuint indices) {
+  glVertexArrayVertexBuffer(vao, 1, indices, 0, sizeof(std::uint32_t));
+  glVertexArrayBindingDivisor(vao, 1, 1);
+  glEnableVertexArrayAttrib(vao, 3);
+  glVertexArrayAttribIFormat(vao, 3, 1, GL_UNSIGNED_INT, 0);
+  glVertexArrayAttribBinding(vao, 3, 1);
+}
+
+}  // namespace
+
+result<frame> render_gl(const scene& s, const options& o, const std::string& shader_dir) {
+  resources r;
+  gl::state_guard keep;
+  const bool any_shadows = o.shadows != shadow_mode::off &&
+                           std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
+  const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
+
+  auto gbuffer_prog = r.program(gbuffer_pass(shader_dir), "gbuffer pass");
+  auto compose_prog = r.program(compose_pass(shader_dir), "compose pass");
+  if (!gbuffer_prog) return failure{gbuffer_prog.error()};
+  if (!compose_prog) return failure{compose_prog.error()};
+  // Light programs by [shadowed][volume].
+  GLuint light_progs[2][2] = {};
+  for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed)
+    for (int vol = 0; vol < 2; ++vol) {
+      auto p = r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1),
+                         std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen"));
+      if (!p) return failure{p.error()};
+      light_progs[shadowed][vol] = *p;
+    }
+  GLuint shadow_prog = 0;
+  if (any_shadows) {
+    auto p = r.program(shadow_pass(shader_dir, mode), "shadow pass");
+    if (!p) return failure{p.error()};
+    shadow_prog = *p;
+  }
+
+  // The scene as one mesh, the light indices, the volume meshes, and the blocks of frame.glsl.
+  const scene_mesh m = flatten(s);
+  GLuint scene_vao = 0, fullscreen_vao = 0;
+  glCreateVertexArrays(1, &scene_vao);
+  glCreateVertexArrays(1, &fullscreen_vao);
+  r.vertex_arrays = {scene_vao, fullscreen_vao};
+  gl::label(GL_VERTEX_ARRAY, scene_vao, "scene");
+  gl::label(GL_VERTEX_ARRAY, fullscreen_vao, "full-screen lights");
+  const GLuint positions = r.buffer(m.positions, "scene positions"), normals = r.buffer(m.normals, "scene normals"),
+               materials = r.buffer(m.materials, "scene materials"), indices = r.buffer(m.indices, "scene indices");
+  glVertexArrayVertexBuffer(scene_vao, 0, positions, 0, sizeof(glm::vec3));
+  glVertexArrayVertexBuffer(scene_vao, 1, normals, 0, sizeof(glm::vec3));
+  glVertexArrayVertexBuffer(scene_vao, 2, materials, 0, sizeof(std::uint32_t));
+  for (GLuint a = 0; a < 3; ++a) {
+    glEnableVertexArrayAttrib(scene_vao, a);
+    glVertexArrayAttribBinding(scene_vao, a, a);
+  }
+  glVertexArrayAttribFormat(scene_vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribFormat(scene_vao, 1, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribIFormat(scene_vao, 2, 1, GL_UNSIGNED_INT, 0);
+  glVertexArrayElementBuffer(scene_vao, indices);
+
+  std::vector<std::uint32_t> light_ids(s.lights.size());
+  for (std::size_t i = 0; i < light_ids.size(); ++i) light_ids[i] = std::uint32_t(i);
+  const GLuint light_index = r.buffer(light_ids, "light indices");
+  bind_light_index(fullscreen_vao, light_index);
+  r.meshes.push_back(gl::make_mesh(sphere_mesh(1), "point light volume"));
+  r.meshes.push_back(gl::make_mesh(cone_mesh(16), "spot light volume"));
+  for (const gl::mesh& mesh : r.meshes) bind_light_index(mesh.vertex_array, light_index);
+
+  const frame_block camera = camera_frame(s, o);
+  const GLuint frame_ubo = r.buffer(std::vector<frame_block>{camera}, "camera frame");
+  const GLuint shadow_ubo = r.buffer(std::vector<frame_block>{camera}, "light frame");
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, r.buffer(material_blocks(s), "materials"));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, r.buffer(light_blocks(s, o), "lights"));
+
+  auto gbuffer = gl::make_targets(describe<thesis_gbuffer>(), o.width, o.height, "gbuffer", true);
+  auto light_buffer = gl::make_targets(describe<thesis_light_buffer>(), o.width, o.height, "light buffer", false);
+  auto final_target = gl::make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
+  if (!gbuffer || !light_buffer || !final_target)
+    return failure{!gbuffer ? gbuffer.error() : !light_buffer ? light_buffer.error() : final_target.error()};
+  r.targets = {*gbuffer, *light_buffer, *final_target};
+  gl::targets shadow_map;
+  if (any_shadows) {
+    auto sm = mode == shadow_mode::transparent
+                  ? gl::make_targets(describe<thesis_shadow_map>(), o.shadow_size, o.shadow_size, "shadow map", true)
+                  : gl::make_targets(describe<opaque_shadow_map>(), o.shadow_size, o.shadow_size, "shadow map", true);
+    if (!sm) return failure{sm.error()};
+    shadow_map = *sm;
+    r.targets.push_back(shadow_map);
+  }
+
+  frame out;
+  gl::timer timer;
+  auto timed = [&](const std::string& pass, auto&& draw) {
+    timer.begin();
+    draw();
+    timer.end();
+    out.pass_ms[pass] += timer.milliseconds();
+  };
+  const float clear_far[4] = {1.0f, 1.0f, 1.0f, 1.0f}, clear_opaque_black[4] = {0.0f, 0.0f, 0.0f, 1.0f},
+              clear_zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  glFrontFace(GL_CCW);
+
+  // G-buffer: empty pixels are opaque black at the far plane.
+  timed("gbuffer", [&] {
+    gl::debug_group g("gbuffer pass");
+    gl::bind(*gbuffer);
+    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_COLOR, 0, clear_opaque_black);
+    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_COLOR, 1, clear_zero);
+    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_COLOR, 2, clear_zero);
+    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_COLOR, 3, clear_far);
+    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_DEPTH, 0, clear_far);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 10, frame_ubo);
+    glUseProgram(*gbuffer_prog);
+    glBindVertexArray(scene_vao);
+    glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
+  });
+
+  // Lights, each shadowed spot light right after its own shadow pass (one shadow map serves them all).
+  gl::bind(*light_buffer);
+  glClearNamedFramebufferfv(light_buffer->framebuffer, GL_COLOR, 0, clear_zero);
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const light& l = s.lights[i];
+    const bool shadowed = any_shadows && l.shadows && l.kind == light_kind::spot;
+    if (shadowed) {
+      timed("shadow", [&] {
+        gl::debug_group g("shadow pass, light " + std::to_string(i));
+        gl::bind(shadow_map);
+        glClearNamedFramebufferfv(shadow_map.framebuffer, GL_COLOR, 0, clear_far);
+        if (mode == shadow_mode::transparent) glClearNamedFramebufferfv(shadow_map.framebuffer, GL_COLOR, 1, clear_far);
+        glClearNamedFramebufferfv(shadow_map.framebuffer, GL_DEPTH, 0, clear_far);
+        glDisable(GL_BLEND);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_CULL_FACE);
+        const frame_block lf = light_frame(s, l, o);
+        glNamedBufferSubData(shadow_ubo, 0, sizeof lf, &lf);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 10, shadow_ubo);
+        glUseProgram(shadow_prog);
+        glBindVertexArray(scene_vao);
+        glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
+      });
+    }
+    timed("light", [&] {
+      gl::debug_group g("light pass, light " + std::to_string(i));
+      gl::bind(*light_buffer);
+      glBindBufferBase(GL_UNIFORM_BUFFER, 10, frame_ubo);
+      glDisable(GL_DEPTH_TEST);
+      glDepthMask(GL_FALSE);
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffer->textures[std::size_t(t)]);
+      if (shadowed)
+        for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
+          glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+      const volume v = volume_of(l);
+      glUseProgram(light_progs[shadowed ? 1 : 0][v == volume::fullscreen ? 0 : 1]);
+      if (v == volume::fullscreen) {
+        glDisable(GL_CULL_FACE);
+        glBindVertexArray(fullscreen_vao);
+        glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3, 1, GLuint(i));
+      } else {
+        // Inside the volume its front faces may be behind the camera: draw the back faces instead.
+        glEnable(GL_CULL_FACE);
+        glCullFace(camera_inside(s, l) ? GL_FRONT : GL_BACK);
+        const gl::mesh& mesh = r.meshes[v == volume::sphere ? 0 : 1];
+        glBindVertexArray(mesh.vertex_array);
+        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, 1, GLuint(i));
+      }
+    });
+  }
+
+  timed("compose", [&] {
+    gl::debug_group g("compose pass");
+    gl::bind(*final_target);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 10, frame_ubo);
+    for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffer->textures[std::size_t(t)]);
+    glBindTextureUnit(GLuint(light_binding), light_buffer->textures[0]);
+    glUseProgram(*compose_prog);
+    gl::draw_fullscreen(fullscreen_vao);
+  });
+  for (const auto& [pass, ms] : out.pass_ms) out.frame_ms += ms;
+
+  const int w = o.width, h = o.height;
+  out.final_image = to_image(gl::read_texels(*final_target, 0), format::rgba8, w, h, view_as::rgb);
+  out.buffers.push_back({"diffuse", to_image(gl::read_texels(*gbuffer, 0), format::rgba8, w, h, view_as::rgb)});
+  out.buffers.push_back({"normals", to_image(gl::read_texels(*gbuffer, 1), format::rgb10a2, w, h, view_as::rgb)});
+  out.buffers.push_back({"depth", to_image(gl::read_texels(*gbuffer, 3), format::r32f, w, h, view_as::depth,
+                                           s.view.near_plane, s.view.far_plane)});
+  out.buffers.push_back({"light", to_image(gl::read_texels(*light_buffer, 0), format::rgba8, w, h, view_as::rgb)});
+  out.buffers.push_back({"specular", to_image(gl::read_texels(*light_buffer, 0), format::rgba8, w, h, view_as::alpha)});
+  if (mode == shadow_mode::transparent)
+    out.buffers.push_back({"shadow_colour", to_image(gl::read_texels(shadow_map, 1), format::rgba8, o.shadow_size,
+                                                     o.shadow_size, view_as::rgb)});
+  return out;
+}
+
+}  // namespace dstrans::render
