@@ -2,6 +2,7 @@
 #include "scene_json.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <set>
@@ -18,6 +19,12 @@ using json = nlohmann::json;
 struct bad_field {
   std::string message;
 };
+
+std::string show(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(v));
+  return text;
+}
 
 // A JSON object being read: every key read is remembered, so that the rest can be reported as unknown.
 class reader {
@@ -86,7 +93,7 @@ class reader {
     const double d = v.get<double>();
     if (!std::isfinite(d)) throw bad_field{name + ": must be finite"};
     if (d < lo || d > hi)
-      throw bad_field{name + ": " + v.dump() + " is outside [" + json(lo).dump() + ", " + json(hi).dump() + "]"};
+      throw bad_field{name + ": " + v.dump() + " is outside [" + show(lo) + ", " + show(hi) + "]"};
     return float(d);
   }
 
