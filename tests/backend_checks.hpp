@@ -123,6 +123,27 @@ std::vector<surface> on_grid(const std::vector<surface>& surfaces) {
   return out;
 }
 
+// A counter-clockwise triangle (clip space, y up) over the lower left half of clip space, which paints
+// red where it is front-facing and green where not: with back faces culled it must appear, red, in the
+// image's bottom rows on both backends.
+inline const char* const facing_vertex_shader =
+    "#ifdef VULKAN\n#define DST_VERTEX_ID gl_VertexIndex\n#else\n#define DST_VERTEX_ID gl_VertexID\n#endif\n"
+    "void main() {\n"
+    "  vec2 corners[3] = vec2[](vec2(-1.0f, -1.0f), vec2(1.0f, -1.0f), vec2(-1.0f, 1.0f));\n"
+    "  gl_Position = vec4(corners[DST_VERTEX_ID], 0.0f, 1.0f);\n"
+    "}\n";
+inline const char* const facing_fragment_shader =
+    "layout(location = 0) out vec4 colour;\n"
+    "void main() { colour = gl_FrontFacing ? vec4(1.0f, 0.0f, 0.0f, 1.0f) : vec4(0.0f, 1.0f, 0.0f, 1.0f); }\n";
+
+inline void check_facing(const std::vector<texel>& texels, int size) {
+  const texel& bottom_left = texels[std::size_t((size - 1) * size)];
+  const texel& top_right = texels[std::size_t(size - 1)];
+  CHECK(int(bottom_left[0]) == 255);  // drawn, front-facing
+  CHECK(int(bottom_left[1]) == 0);
+  CHECK(int(top_right[0]) == 0);      // outside the triangle
+}
+
 // A second layout for the bit-exact test: half and full floats, a two-channel target.
 using float_layout = layout<surface, target<format::rgba16f, field::normal, field::alpha>,
                             target<format::rgba32f, field::diffuse, field::depth>,

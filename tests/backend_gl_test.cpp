@@ -166,3 +166,32 @@ TEST_CASE("GL: targets, meshes, timers and labels work and state_guard restores 
   glDeleteVertexArrays(1, &engine_vao);
   check_quiet(*ctx);
 }
+
+TEST_CASE("GL: clip-space +y is the image's top row and counter-clockwise triangles face the viewer", "[gl]") {
+  auto ctx = context();
+  if (!ctx) return;
+  auto t = gl::make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, 8, 8, "facing", false);
+  REQUIRE(t);
+  glsl::source vs, fs;
+  vs.add(testing::facing_vertex_shader, __FILE__, __LINE__);
+  fs.add(testing::facing_fragment_shader, __FILE__, __LINE__);
+  auto program = gl::make_program(vs, fs, "facing");
+  REQUIRE(program);
+  GLuint vao = 0;
+  glCreateVertexArrays(1, &vao);
+  {
+    gl::state_guard keep;
+    gl::bind(*t);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+    glUseProgram(*program);
+    glBindVertexArray(vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  testing::check_facing(gl::read_texels(*t, 0), 8);
+  glDeleteVertexArrays(1, &vao);
+  glDeleteProgram(*program);
+  gl::destroy(*t);
+  check_quiet(*ctx);
+}

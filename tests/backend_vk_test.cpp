@@ -73,7 +73,7 @@ void check_gbuffer_write(vk::device& dev, int width, int height, bool exact) {
   w.pBufferInfo = &bi;
   vkUpdateDescriptorSets(dev.ctx().device, 1, &w, 0, nullptr);
   const double ms = dev.submit([&](VkCommandBuffer cmd) {
-    dev.begin_rendering(cmd, *targets, true);
+    dev.begin_rendering(cmd, *targets, std::vector<glm::vec4>(targets->colors.size(), glm::vec4(0.0f)));
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe->handle);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe->layout, 0, 1, &set, 0, nullptr);
     vkCmdDraw(cmd, 3, 1, 0, 0);
@@ -145,4 +145,34 @@ TEST_CASE("VK: clear errors for layouts the device cannot hold, bad shaders and 
   auto again = dev.get_shader(glsl::fullscreen_vertex_shader(), spirv::stage::vertex, "fullscreen again");
   REQUIRE(again);
   CHECK(*again == *vs);
+}
+
+TEST_CASE("VK: clip-space +y is the image's top row and counter-clockwise triangles face the viewer", "[vk]") {
+  vk_fixture fx;
+  if (!open(fx)) return;
+  vk::device& dev = *fx.dev;
+  auto t = dev.make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, 8, 8, "facing", false);
+  REQUIRE(t);
+  glsl::source vs, fs;
+  vs.add(testing::facing_vertex_shader, __FILE__, __LINE__);
+  fs.add(testing::facing_fragment_shader, __FILE__, __LINE__);
+  auto v = dev.get_shader(vs, spirv::stage::vertex, "facing");
+  auto f = dev.get_shader(fs, spirv::stage::fragment, "facing");
+  REQUIRE(v);
+  REQUIRE(f);
+  vk::pipeline_state culled;
+  culled.cull = VK_CULL_MODE_BACK_BIT;
+  auto pipe = dev.make_graphics_pipeline(**v, **f, t->formats, "facing", culled);
+  REQUIRE(pipe);
+  dev.submit([&](VkCommandBuffer cmd) {
+    dev.begin_rendering(cmd, *t, {glm::vec4(0.0f)});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipe->handle);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    dev.end_rendering(cmd);
+  });
+  auto texels = dev.read_texels(*t, 0);
+  REQUIRE(texels);
+  testing::check_facing(*texels, 8);
+  dev.destroy(*pipe);
+  dev.destroy(*t);
 }

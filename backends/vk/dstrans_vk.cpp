@@ -333,7 +333,8 @@ result<pipeline> device::pipeline_layout(const std::vector<const shader*>& stage
 }
 
 result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shader& fragment,
-                                                const std::vector<format>& color_formats, const std::string& label) {
+                                                const std::vector<format>& color_formats, const std::string& label,
+                                                const pipeline_state& state) {
   // The fragment shader must write exactly the targets it is drawn into.
   const auto& outs = fragment.reflection.outputs;
   if (outs.size() != color_formats.size())
@@ -359,21 +360,36 @@ result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shad
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = fragment.module;
   VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  vertex_input.vertexBindingDescriptionCount = std::uint32_t(state.bindings.size());
+  vertex_input.pVertexBindingDescriptions = state.bindings.data();
+  vertex_input.vertexAttributeDescriptionCount = std::uint32_t(state.attributes.size());
+  vertex_input.pVertexAttributeDescriptions = state.attributes.data();
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
   viewport.viewportCount = viewport.scissorCount = 1;
   VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.cullMode = state.cull;
+  // Counter-clockwise in clip space faces the viewer, as on GL; Vulkan's facing already accounts for
+  // the negative-height viewport (tested: backend_vk_test.cpp, "clip-space +y is the image's top row").
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  depth.depthTestEnable = state.depth_test;
+  depth.depthWriteEnable = state.depth_write;
+  depth.depthCompareOp = VK_COMPARE_OP_LESS;
   std::vector<VkPipelineColorBlendAttachmentState> blends(color_formats.size());
-  for (auto& b : blends)
+  for (auto& b : blends) {
     b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    if (state.additive) {
+      b.blendEnable = VK_TRUE;
+      b.srcColorBlendFactor = b.dstColorBlendFactor = b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
+  }
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = std::uint32_t(blends.size());
   blend.pAttachments = blends.data();
@@ -386,6 +402,7 @@ result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shad
   VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
   rendering.colorAttachmentCount = std::uint32_t(formats.size());
   rendering.pColorAttachmentFormats = formats.data();
+  if (state.depth_attachment) rendering.depthAttachmentFormat = VK_FORMAT_D32_SFLOAT;
 
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
   ci.pNext = &rendering;
@@ -455,20 +472,22 @@ double device::submit(const std::function<void(VkCommandBuffer)>& record) {
   return double(ticks[1] - ticks[0]) * timestamp_ns_ * 1e-6;
 }
 
-void device::begin_rendering(VkCommandBuffer cmd, const targets& t, bool clear) {
+void device::begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear) {
   std::vector<VkRenderingAttachmentInfo> colors;
-  for (const image& c : t.colors) {
+  for (std::size_t i = 0; i < t.colors.size(); ++i) {
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    a.imageView = c.view;
+    a.imageView = t.colors[i].view;
     a.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
-    a.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+    a.loadOp = i < clear.size() ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
     a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    if (i < clear.size())
+      for (int k = 0; k < 4; ++k) a.clearValue.color.float32[k] = clear[i][k];
     colors.push_back(a);
   }
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   depth.imageView = t.depth.view;
   depth.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
-  depth.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+  depth.loadOp = clear.empty() ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
   depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   depth.clearValue.depthStencil = {1.0f, 0};
   VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};

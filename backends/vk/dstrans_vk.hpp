@@ -71,6 +71,16 @@ struct shader {
   spirv::reflection reflection;
 };
 
+// How a graphics pipeline reads vertices and treats depth, blending and faces.
+struct pipeline_state {
+  std::vector<VkVertexInputBindingDescription> bindings;
+  std::vector<VkVertexInputAttributeDescription> attributes;
+  bool depth_attachment = false;  // a D32_SFLOAT depth attachment is bound
+  bool depth_test = false, depth_write = false;
+  bool additive = false;  // blend ONE + ONE into every target
+  VkCullModeFlags cull = VK_CULL_MODE_NONE;  // counter-clockwise faces are front faces
+};
+
 // A pipeline with the set-0 descriptor layout its shaders declare.
 struct pipeline {
   VkPipeline handle = VK_NULL_HANDLE;
@@ -106,17 +116,18 @@ class device {
   // input; fails before building when the fragment shader's outputs do not match the formats one to one
   // (locations 0..n-1, one output per target, as many components as the format has channels).
   result<pipeline> make_graphics_pipeline(const shader& vertex, const shader& fragment,
-                                          const std::vector<format>& color_formats, const std::string& label);
+                                          const std::vector<format>& color_formats, const std::string& label,
+                                          const pipeline_state& state = {});
   result<pipeline> make_compute_pipeline(const shader& compute, const std::string& label);
   void destroy(pipeline& p);
 
   // Records commands with `record`, submits them, waits, and returns the GPU time they took in ms.
   double submit(const std::function<void(VkCommandBuffer)>& record);
 
-  // Starts dynamic rendering into all of `t` (cleared to 0 and depth 1, or loaded), with a viewport of
-  // negative height so that clip-space +y is the image's top row, as with GL's
-  // glClipControl(GL_UPPER_LEFT): one projection matrix serves both APIs.
-  void begin_rendering(VkCommandBuffer cmd, const targets& t, bool clear);
+  // Starts dynamic rendering into all of `t`, with a viewport of negative height so that clip-space +y
+  // is the image's top row, as with GL's glClipControl(GL_UPPER_LEFT): one projection matrix serves both
+  // APIs. `clear` holds one colour per target (and clears depth to 1); empty loads what is there.
+  void begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear);
   void end_rendering(VkCommandBuffer cmd);
 
   // Names a Vulkan object for frame captures and validation messages (VK_EXT_debug_utils, when enabled).
