@@ -14,12 +14,24 @@ glm::mat4 spot_view(const light& l) {
   const glm::vec3 up = std::fabs(l.direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
   return glm::lookAtRH(l.position, l.position + l.direction, up);
 }
-}  // namespace
 
-volume volume_of(const light& l) {
+// The shape that bounds a light's reach, whatever the camera.
+volume shape_of(const light& l) {
   if (l.kind == light_kind::directional) return volume::fullscreen;
   if (l.kind == light_kind::spot && l.outer_angle <= widest_cone) return volume::cone;
   return volume::sphere;
+}
+
+// Whether the camera may be inside the light's volume mesh (conservative).
+bool camera_inside(const scene& s, const light& l) {
+  // The meshes stay within 1.3 times the light's range (sphere_mesh(1) reaches 1.26 at its corners).
+  const float reach = shape_of(l) == volume::cone ? l.range / std::cos(glm::radians(l.outer_angle)) : l.range;
+  return glm::length(s.view.position - l.position) < 1.3f * reach;
+}
+}  // namespace
+
+volume volume_of(const scene& s, const light& l) {
+  return shape_of(l) == volume::fullscreen || camera_inside(s, l) ? volume::fullscreen : shape_of(l);
 }
 
 frame_block camera_frame(const scene& s, const options& o) {
@@ -60,7 +72,7 @@ std::vector<light_block> light_blocks(const scene& s, const options& o) {
     b.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
     b.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), l.shadows && l.kind == light_kind::spot ? 1.0f : 0.0f, 0, 0);
     if (l.kind == light_kind::spot) b.shadow_view_proj = light_frame(s, l, o).view_proj;
-    switch (volume_of(l)) {
+    switch (shape_of(l)) {
       case volume::fullscreen: b.volume = glm::mat4(1.0f); break;
       case volume::sphere: b.volume = glm::scale(glm::translate(glm::mat4(1.0f), l.position), glm::vec3(l.range)); break;
       case volume::cone: {
@@ -77,11 +89,5 @@ std::vector<light_block> light_blocks(const scene& s, const options& o) {
   return out;
 }
 
-bool camera_inside(const scene& s, const light& l) {
-  if (l.kind == light_kind::directional) return true;
-  // The meshes stay within 1.3 times the light's range (sphere_mesh(1) reaches 1.26 at its corners).
-  return glm::length(s.view.position - l.position) < 1.3f * l.range /
-                                                          (volume_of(l) == volume::cone ? std::cos(glm::radians(l.outer_angle)) : 1.0f);
-}
 
 }  // namespace dstrans::render

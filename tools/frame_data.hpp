@@ -43,11 +43,11 @@ frame_block camera_frame(const scene& s, const options& o);
 frame_block light_frame(const scene& s, const light& l, const options& o);
 std::vector<material_block> material_blocks(const scene& s);
 std::vector<light_block> light_blocks(const scene& s, const options& o);
-// Whether the camera may be inside light `l`'s volume mesh (conservative: then the volume is drawn with
-// its back faces, which is right either way).
-bool camera_inside(const scene& s, const light& l);
-// The volume mesh a light is drawn with: none (full screen) for directional lights.
+// The volume mesh a light is drawn with: none (full screen) for directional lights, and for lights whose
+// volume may hold the camera. The thesis draws those with front faces culled, but then back faces past
+// the far plane are clipped away and their pixels lose the light; a full-screen triangle cannot miss
+// any, and attenuation and falloff leave the pixels beyond the light's reach at zero.
 enum class volume { fullscreen, sphere, cone };
-volume volume_of(const light& l);
+volume volume_of(const scene& s, const light& l);
 
 }  // namespace dstrans::render

@@ -21,6 +21,9 @@ struct image {
 
 struct frame {
   image final_image;
+  // The raw targets, for tests that check a pass against the CPU: the G-buffer's four and the light buffer.
+  std::vector<std::vector<texel>> gbuffer;
+  std::vector<texel> light_buffer;
   std::vector<std::pair<std::string, image>> buffers;  // in the order the passes make them
   std::map<std::string, double> pass_ms;
   double frame_ms = 0.0;

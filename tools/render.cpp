@@ -7,6 +7,10 @@
 #include <dstrans_gl_context.hpp>
 #include "render_gl.hpp"
 #endif
+#ifdef DSTRANS_HAVE_VK
+#include <dstrans_vk_device.hpp>
+#include "render_vk.hpp"
+#endif
 
 #include "cli.hpp"
 #include "scene_json.hpp"
@@ -60,7 +64,21 @@ int render(std::vector<std::string> args) {
       f = failure{"this dstrans was built without the OpenGL backend (DSTRANS_BUILD_GL=OFF)"};
 #endif
     } else {
-      f = failure{"the Vulkan renderer is not written yet; use --backend gl"};
+#ifdef DSTRANS_HAVE_VK
+      auto hd = vk::headless_device::create(false);
+      if (!hd) {
+        std::fprintf(stderr, "dstrans render: no Vulkan: %s\n", hd.error().c_str());
+        return 1;
+      }
+      auto dev = vk::device::create((*hd)->ctx());
+      if (!dev) {
+        std::fprintf(stderr, "dstrans render: no Vulkan: %s\n", dev.error().c_str());
+        return 1;
+      }
+      f = render::render_vk(**dev, *s, o, DSTRANS_SHADER_DIR);
+#else
+      f = failure{"this dstrans was built without the Vulkan backend (DSTRANS_BUILD_VK=OFF)"};
+#endif
     }
     if (!f) {
       std::fprintf(stderr, "dstrans render: %s\n", f.error().c_str());

@@ -201,16 +201,16 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       if (shadowed)
         for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
           glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
-      const volume v = volume_of(l);
+      const volume v = volume_of(s, l);
       glUseProgram(light_progs[shadowed ? 1 : 0][v == volume::fullscreen ? 0 : 1]);
       if (v == volume::fullscreen) {
         glDisable(GL_CULL_FACE);
         glBindVertexArray(fullscreen_vao);
         glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3, 1, GLuint(i));
       } else {
-        // Inside the volume its front faces may be behind the camera: draw the back faces instead.
+        // Front faces only: each pixel the volume covers is lit once (the camera is outside it).
         glEnable(GL_CULL_FACE);
-        glCullFace(camera_inside(s, l) ? GL_FRONT : GL_BACK);
+        glCullFace(GL_BACK);
         const gl::mesh& mesh = r.meshes[v == volume::sphere ? 0 : 1];
         glBindVertexArray(mesh.vertex_array);
         glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, 1, GLuint(i));
@@ -233,6 +233,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   for (const auto& [pass, ms] : out.pass_ms) out.frame_ms += ms;
 
   const int w = o.width, h = o.height;
+  for (int t = 0; t < 4; ++t) out.gbuffer.push_back(gl::read_texels(*gbuffer, t));
+  out.light_buffer = gl::read_texels(*light_buffer, 0);
   out.final_image = to_image(gl::read_texels(*final_target, 0), format::rgba8, w, h, view_as::rgb);
   out.buffers.push_back({"diffuse", to_image(gl::read_texels(*gbuffer, 0), format::rgba8, w, h, view_as::rgb)});
   out.buffers.push_back({"normals", to_image(gl::read_texels(*gbuffer, 1), format::rgb10a2, w, h, view_as::rgb)});

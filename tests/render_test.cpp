@@ -1,0 +1,308 @@
+// The thesis's renderer on both backends (small images): GL and Vulkan agree, and the passes do what
+// TECHNIQUES.md S0 says, checked against the CPU formulas on the frames' own G-buffers and light buffers.
+// A backend that is missing here is skipped with a message; Vulkan runs under the validation layer.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <functional>
+#include <optional>
+
+#include <dstrans/dstrans.hpp>
+#include <render_gl.hpp>
+#include <render_vk.hpp>
+#include <frame_data.hpp>
+#include <scene_json.hpp>
+
+#include <dstrans_gl_context.hpp>
+#include <dstrans_vk_device.hpp>
+
+using namespace dstrans;
+using render::frame;
+using render::options;
+
+namespace {
+
+enum class backend { gl, vk };
+const backend backends[] = {backend::gl, backend::vk};
+const char* name(backend b) { return b == backend::gl ? "GL" : "VK"; }
+
+// One frame on `b`, or nothing (with a message) where this machine lacks the backend.
+std::optional<frame> draw(backend b, const scene& s, const options& o) {
+  if (b == backend::gl) {
+    auto ctx = gl::headless_context::create();
+    if (!ctx) {
+      WARN("skipped GL: " << ctx.error());
+      return std::nullopt;
+    }
+    auto f = render::render_gl(s, o, DSTRANS_SHADER_DIR);
+    INFO(f.error());
+    REQUIRE(f);
+    const auto messages = (*ctx)->debug_messages();
+    for (const auto& m : messages) UNSCOPED_INFO(m);
+    CHECK(messages.empty());
+    return *f;
+  }
+  auto hd = vk::headless_device::create(true);
+  if (!hd) {
+    WARN("skipped VK: " << hd.error());
+    return std::nullopt;
+  }
+  std::optional<frame> out;
+  {
+    auto dev = vk::device::create((*hd)->ctx());
+    REQUIRE(dev);
+    auto f = render::render_vk(**dev, s, o, DSTRANS_SHADER_DIR);
+    INFO(f.error());
+    REQUIRE(f);
+    out = *f;
+  }
+  const auto messages = (*hd)->validation_messages();
+  for (const auto& m : messages) UNSCOPED_INFO(m);
+  CHECK(messages.empty());
+  return out;
+}
+
+scene example(const std::string& file) {
+  auto s = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/" + file);
+  INFO(s.error());
+  REQUIRE(s);
+  return *s;
+}
+
+options small(int w, int h) {
+  options o;
+  o.width = w;
+  o.height = h;
+  o.shadow_size = 256;
+  return o;
+}
+
+double rmse(const render::image& a, const render::image& b) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i)
+    if (i % 4 != 3) {
+      const double d = double(a.rgba[i]) - double(b.rgba[i]);
+      sum += d * d;
+      ++n;
+    }
+  return std::sqrt(sum / double(n));
+}
+
+surface gbuffer_at(const frame& f, std::size_t i) {
+  return read<thesis_gbuffer>({f.gbuffer[0][i], f.gbuffer[1][i], f.gbuffer[2][i], f.gbuffer[3][i]});
+}
+light_sample light_at(const frame& f, std::size_t i) { return read<thesis_light_buffer>({f.light_buffer[i]}); }
+
+// Counts pixels whose final colour differs from `expected(pixel)` by more than one code in a channel.
+std::size_t mismatches(const frame& f, const std::function<glm::vec3(glm::ivec2)>& expected, std::string& first) {
+  std::size_t wrong = 0;
+  const int w = f.final_image.width, h = f.final_image.height;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const texel want = encode(format::rgba8, glm::vec4(expected({x, y}), 1.0f));
+      const std::size_t i = std::size_t(y * w + x);
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(int(want[std::size_t(c)]) - int(f.final_image.rgba[4 * i + std::size_t(c)])) > 1) {
+          if (!wrong++) first = "pixel " + std::to_string(x) + "," + std::to_string(y);
+          break;
+        }
+    }
+  return wrong;
+}
+
+}  // namespace
+
+TEST_CASE("GL and Vulkan render the same image, at even and odd sizes", "[render][gl][vk]") {
+  const scene s = example("pane.json");
+  for (glm::ivec2 size : {glm::ivec2(160, 90), glm::ivec2(161, 91)}) {
+    auto g = draw(backend::gl, s, small(size.x, size.y));
+    auto v = draw(backend::vk, s, small(size.x, size.y));
+    if (!g || !v) continue;
+    INFO(size.x << "x" << size.y);
+    CHECK(rmse(g->final_image, v->final_image) < 1.0);
+    CHECK(g->gbuffer[0] == v->gbuffer[0]);  // the same rows hold the same glass
+  }
+}
+
+TEST_CASE("without transparent materials the compose pass is plain deferred shading", "[render]") {
+  scene s = example("pane.json");
+  for (material& m : s.materials) m.alpha = 1.0f;
+  for (backend b : backends) {
+    auto f = draw(b, s, small(160, 90));
+    if (!f) continue;
+    INFO(name(b));
+    std::size_t transparent = 0;
+    for (std::size_t i = 0; i < f->gbuffer[0].size(); ++i) transparent += gbuffer_at(*f, i).alpha < 1.0f;
+    CHECK(transparent == 0);
+    std::string first;
+    const std::size_t wrong = mismatches(
+        *f,
+        [&](glm::ivec2 p) {
+          const std::size_t i = std::size_t(p.y * 160 + p.x);
+          return shader::dst_shade(gbuffer_at(*f, i), light_at(*f, i), s.ambient);
+        },
+        first);
+    INFO("first: " << first);
+    CHECK(wrong == 0);
+  }
+}
+
+TEST_CASE("refraction strength 0 is the de-interlaced blend of Eq. 3.3", "[render]") {
+  const scene s = example("pane.json");
+  options o = small(160, 90);
+  o.refraction = 0.0f;
+  for (backend b : backends) {
+    auto f = draw(b, s, o);
+    if (!f) continue;
+    INFO(name(b));
+    std::size_t glass = 0;
+    std::string first;
+    const std::size_t wrong = mismatches(
+        *f,
+        [&](glm::ivec2 p) {
+          const glm::ivec2 q = interlace::rows::partner(p, {160, 90});
+          const std::size_t i = std::size_t(p.y * 160 + p.x), j = std::size_t(q.y * 160 + q.x);
+          const surface a = gbuffer_at(*f, i), c = gbuffer_at(*f, j);
+          if (a.alpha >= 1.0f && c.alpha >= 1.0f) return shader::dst_shade(a, light_at(*f, i), s.ambient);
+          ++glass;
+          return a.alpha <= c.alpha ? shader::dst_compose(c, light_at(*f, j), a, light_at(*f, i), s.ambient)
+                                    : shader::dst_compose(a, light_at(*f, i), c, light_at(*f, j), s.ambient);
+        },
+        first);
+    INFO("first: " << first);
+    CHECK(glass > 100);  // the pane and the bottle are in view
+    CHECK(wrong == 0);
+  }
+}
+
+TEST_CASE("an opaque object in front of a glass pane never shows inside the pane", "[render][refraction]") {
+  scene s = example("pane.json");
+  // A box in front of the pane, half over it; it is drawn red, then blue: outside the box's own pixels,
+  // nothing may change, at any refraction strength.
+  const auto box_material = std::uint32_t(s.materials.size());
+  s.materials.push_back(material{{1.0f, 0.0f, 0.0f}});
+  s.objects.push_back({shape_box({0.5f, 0.5f, 0.1f}), glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, 1.1f, 1.6f)), box_material});
+  for (float strength : {4.0f, 16.0f, 48.0f})
+    for (backend b : backends) {
+      options o = small(160, 90);
+      o.refraction = strength;
+      s.materials[box_material].diffuse = {1.0f, 0.0f, 0.0f};
+      auto red = draw(b, s, o);
+      s.materials[box_material].diffuse = {0.0f, 0.0f, 1.0f};
+      auto blue = draw(b, s, o);
+      if (!red || !blue) continue;
+      INFO(name(b) << ", strength " << strength);
+      std::size_t box = 0, leaks = 0;
+      for (int y = 0; y < 90; ++y)
+        for (int x = 0; x < 160; ++x) {
+          const glm::ivec2 q = interlace::rows::partner({x, y}, {160, 90});
+          const std::size_t i = std::size_t(y * 160 + x), j = std::size_t(q.y * 160 + q.x);
+          if (red->gbuffer[0][i] != blue->gbuffer[0][i] || red->gbuffer[0][j] != blue->gbuffer[0][j]) {
+            ++box;  // the box itself is at this pixel or its partner
+            continue;
+          }
+          for (std::size_t c = 0; c < 3; ++c) leaks += red->final_image.rgba[4 * i + c] != blue->final_image.rgba[4 * i + c];
+        }
+      CHECK(box > 50);
+      CHECK(leaks == 0);
+    }
+}
+
+namespace {
+// A white floor under a horizontal pane, lit straight down by a bright spot light, seen from above.
+scene shadow_scene(float alpha, glm::vec3 colour) {
+  scene s;
+  s.ambient = glm::vec3(0.0f);
+  s.materials = {material{glm::vec3(1.0f)}, material{colour, alpha}};
+  s.objects.push_back({shape_box({6.0f, 0.1f, 6.0f}), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -0.05f, 0.0f)), 0});
+  s.objects.push_back({shape_pane({1.0f, 1.0f}),
+                       glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.0f, 0.0f)), glm::radians(-90.0f),
+                                   glm::vec3(1, 0, 0)),
+                       1});
+  light l;
+  l.kind = light_kind::spot;
+  l.position = {0.0f, 3.0f, 0.0f};
+  l.direction = {0.0f, -1.0f, 0.0f};
+  l.intensity = 2.2f;  // above 1 after attenuation: min(I_L, C) = C under the glass
+  l.range = 300.0f;
+  l.inner_angle = 40.0f;
+  l.outer_angle = 45.0f;
+  l.shadows = true;
+  s.lights = {l};
+  // Seen from the side, so that the floor in the pane's shadow shows beside the pane.
+  s.view.position = {3.0f, 3.5f, 0.01f};
+  s.view.target = {0.0f, 0.0f, 0.0f};
+  s.view.fov_y = 50.0f;
+  return s;
+}
+}  // namespace
+
+TEST_CASE("a coloured pane casts the shadow Eq. 3.1 predicts, an opaque one a black shadow", "[render][shadow]") {
+  const glm::vec3 colour(1.0f, 0.5f, 0.25f);
+  const options o = small(96, 96);
+  for (backend b : backends) {
+    const scene glass_scene = shadow_scene(0.5f, colour);
+    auto glass = draw(b, glass_scene, o);
+    auto wall = draw(b, shadow_scene(1.0f, colour), o);
+    if (!glass || !wall) continue;
+    INFO(name(b));
+    // Floor texels (white, opaque) whose world position lies in the pane's shadow, a 1.5-wide square
+    // under the light: their light is N.L min(I_L, C)(1 - alpha) = N.L C / 2, since I_L > 1 > C there;
+    // behind the opaque pane it is 0.
+    const glm::mat4 to_world = render::camera_frame(glass_scene, o).inv_view_proj;
+    std::size_t in_shadow = 0, lit = 0, black = 0;
+    for (int y = 0; y < o.height; ++y)
+      for (int x = 0; x < o.width; ++x) {
+        const std::size_t i = std::size_t(y * o.width + x);
+        const surface s = gbuffer_at(*glass, i);
+        if (s.alpha < 1.0f || s.diffuse != glm::vec3(1.0f) || s.depth >= 1.0f) continue;
+        const glm::vec2 ndc((float(x) + 0.5f) / float(o.width) * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / float(o.height) * 2.0f);
+        const glm::vec4 h = to_world * glm::vec4(ndc, s.depth, 1.0f);
+        const glm::vec3 p = glm::vec3(h) / h.w;
+        const float n_dot_l = glm::normalize(glm::vec3(0.0f, 3.0f, 0.0f) - p).y;
+        if (std::fabs(p.x) < 0.7f && std::fabs(p.z) < 0.7f) {
+          ++in_shadow;
+          const glm::vec3 l = light_at(*glass, i).light, want = n_dot_l * colour * 0.5f;
+          CHECK(l.x == Approx(want.x).margin(2.0 / 255.0));
+          CHECK(l.y == Approx(want.y).margin(2.0 / 255.0));
+          CHECK(l.z == Approx(want.z).margin(2.0 / 255.0));
+          // Where the camera sees the floor past the opaque pane too, its shadow is black.
+          if (gbuffer_at(*wall, i).diffuse == glm::vec3(1.0f)) {
+            ++black;
+            CHECK(light_at(*wall, i).light == glm::vec3(0.0f));
+          }
+        } else if ((std::fabs(p.x) > 0.8f || std::fabs(p.z) > 0.8f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f) {
+          ++lit;
+          CHECK(light_at(*glass, i).light.x > 0.9f);  // the full light, clamped by the RGBA8 light buffer
+        }
+      }
+    CHECK(in_shadow > 50);
+    CHECK(black > 20);
+    CHECK(lit > 500);
+  }
+}
+
+TEST_CASE("lights add: two lights give the sum of each alone, within quantisation", "[render]") {
+  const scene both = example("pane.json");
+  REQUIRE(both.lights.size() >= 2);
+  scene first = both, second = both;
+  first.lights = {both.lights[0]};
+  second.lights = {both.lights[1]};
+  for (backend b : backends) {
+    auto fa = draw(b, first, small(96, 54)), fb = draw(b, second, small(96, 54));
+    auto all = draw(b, scene{both.materials, both.objects, {both.lights[0], both.lights[1]}, both.view, both.ambient}, small(96, 54));
+    if (!fa || !fb || !all) continue;
+    INFO(name(b));
+    std::size_t wrong = 0, lit = 0;
+    for (std::size_t i = 0; i < all->light_buffer.size(); ++i)
+      for (std::size_t c = 0; c < 4; ++c) {
+        const int sum = fa->light_buffer[i][c] + fb->light_buffer[i][c];
+        if (sum >= 255) continue;  // the light buffer saturates, as the thesis's does
+        lit += sum > 0;
+        wrong += std::abs(sum - int(all->light_buffer[i][c])) > 1;
+      }
+    CHECK(lit > 1000);
+    CHECK(wrong == 0);
+  }
+}

@@ -1,0 +1,363 @@
+// Implements render_vk.hpp. Each pass is its own submission, timed by the device's timestamps, and
+// starts with a full memory barrier: the passes read what the one before wrote.
+#include "render_vk.hpp"
+
+#include <cstring>
+#include <map>
+
+#include "passes.hpp"
+
+namespace dstrans::render {
+
+namespace {
+
+// Vulkan objects of one frame, released however the frame ends.
+struct resources {
+  vk::device& dev;
+  std::vector<vk::buffer> buffers;
+  std::vector<vk::pipeline> pipelines;
+  std::vector<vk::targets> targets;
+  VkSampler sampler = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+
+  explicit resources(vk::device& d) : dev(d) {}
+  ~resources() {
+    const VkDevice device = dev.ctx().device;
+    if (pool) vkDestroyDescriptorPool(device, pool, dev.ctx().allocator);
+    if (sampler) vkDestroySampler(device, sampler, dev.ctx().allocator);
+    for (auto& t : targets) dev.destroy(t);
+    for (auto& p : pipelines) dev.destroy(p);
+    for (auto& b : buffers) dev.destroy(b);
+  }
+  template <class T>
+  result<VkBuffer> buffer(const std::vector<T>& data, VkBufferUsageFlags usage, const std::string& name) {
+    auto b = dev.make_buffer(VkDeviceSize(std::max<std::size_t>(data.size(), 1) * sizeof(T)), usage, name);
+    if (!b) return failure{b.error()};
+    if (!data.empty()) std::memcpy(b->mapped, data.data(), data.size() * sizeof(T));
+    buffers.push_back(*b);
+    return b->handle;
+  }
+};
+
+// What a descriptor set binds: buffers and sampled images by binding number.
+struct bindings {
+  std::map<int, VkBuffer> buffers;
+  std::map<int, VkImageView> images;
+};
+
+// A descriptor set for `p` whose shaders are `stages`, filled from `b` by what the shaders declare.
+result<VkDescriptorSet> make_set(resources& r, const vk::pipeline& p, const std::vector<const vk::shader*>& stages, const bindings& b) {
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = r.pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &p.set_layout;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  if (vkAllocateDescriptorSets(r.dev.ctx().device, &ai, &set) != VK_SUCCESS) return failure{"descriptor pool exhausted"};
+  std::vector<VkWriteDescriptorSet> writes;
+  std::vector<VkDescriptorBufferInfo> buffer_infos;
+  std::vector<VkDescriptorImageInfo> image_infos;
+  buffer_infos.reserve(32);
+  image_infos.reserve(32);
+  std::map<int, bool> done;
+  auto write = [&](int binding, VkDescriptorType type) -> result<bool> {
+    if (done[binding]) return true;
+    done[binding] = true;
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = std::uint32_t(binding);
+    w.descriptorCount = 1;
+    w.descriptorType = type;
+    if (type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
+      const auto it = b.images.find(binding);
+      if (it == b.images.end()) return failure{"nothing bound to sampler binding " + std::to_string(binding)};
+      image_infos.push_back({r.sampler, it->second, VK_IMAGE_LAYOUT_GENERAL});
+      w.pImageInfo = &image_infos.back();
+    } else {
+      const auto it = b.buffers.find(binding);
+      if (it == b.buffers.end()) return failure{"nothing bound to buffer binding " + std::to_string(binding)};
+      buffer_infos.push_back({it->second, 0, VK_WHOLE_SIZE});
+      w.pBufferInfo = &buffer_infos.back();
+    }
+    writes.push_back(w);
+    return true;
+  };
+  for (const vk::shader* s : stages) {
+    for (const auto& res : s->reflection.samplers)
+      if (auto ok = write(res.binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER); !ok) return failure{ok.error()};
+    for (const auto& res : s->reflection.uniform_buffers)
+      if (auto ok = write(res.binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER); !ok) return failure{ok.error()};
+    for (const auto& res : s->reflection.storage_buffers)
+      if (auto ok = write(res.binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER); !ok) return failure{ok.error()};
+  }
+  vkUpdateDescriptorSets(r.dev.ctx().device, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
+  return set;
+}
+
+void barrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier m{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  m.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  m.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &m, 0, nullptr, 0, nullptr);
+}
+
+struct compiled {
+  const vk::shader* vertex;
+  const vk::shader* fragment;
+};
+
+result<compiled> compile(vk::device& dev, const result<pass_sources>& p, const std::string& name) {
+  if (!p) return failure{p.error()};
+  auto v = dev.get_shader(p->vertex, spirv::stage::vertex, name + " (vertex)");
+  if (!v) return failure{v.error()};
+  auto f = dev.get_shader(p->fragment, spirv::stage::fragment, name + " (fragment)");
+  if (!f) return failure{f.error()};
+  return compiled{*v, *f};
+}
+
+VkVertexInputAttributeDescription attribute(std::uint32_t location, std::uint32_t binding, VkFormat f) {
+  return {location, binding, f, 0};
+}
+
+}  // namespace
+
+result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const std::string& shader_dir) {
+  resources r(dev);
+  const vk::context& ctx = dev.ctx();
+  const bool any_shadows = o.shadows != shadow_mode::off &&
+                           std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
+  const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
+
+  auto gbuffer = dev.make_targets(describe<thesis_gbuffer>(), o.width, o.height, "gbuffer", true);
+  if (!gbuffer) return failure{gbuffer.error()};
+  r.targets.push_back(*gbuffer);
+  auto light_buffer = dev.make_targets(describe<thesis_light_buffer>(), o.width, o.height, "light buffer", false);
+  if (!light_buffer) return failure{light_buffer.error()};
+  r.targets.push_back(*light_buffer);
+  auto final_target = dev.make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
+  if (!final_target) return failure{final_target.error()};
+  r.targets.push_back(*final_target);
+  vk::targets shadow_map;
+  if (any_shadows) {
+    auto sm = mode == shadow_mode::transparent
+                  ? dev.make_targets(describe<thesis_shadow_map>(), o.shadow_size, o.shadow_size, "shadow map", true)
+                  : dev.make_targets(describe<opaque_shadow_map>(), o.shadow_size, o.shadow_size, "shadow map", true);
+    if (!sm) return failure{sm.error()};
+    shadow_map = *sm;
+    r.targets.push_back(shadow_map);
+  }
+
+  // Pipelines.
+  const VkBufferUsageFlags vertex_use = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, index_use = VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
+  vk::pipeline_state scene_state;
+  scene_state.bindings = {{0, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
+                          {1, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
+                          {2, sizeof(std::uint32_t), VK_VERTEX_INPUT_RATE_VERTEX}};
+  scene_state.attributes = {attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT), attribute(1, 1, VK_FORMAT_R32G32B32_SFLOAT),
+                            attribute(2, 2, VK_FORMAT_R32_UINT)};
+  scene_state.depth_attachment = scene_state.depth_test = scene_state.depth_write = true;
+  auto gbuffer_shaders = compile(dev, gbuffer_pass(shader_dir), "gbuffer pass");
+  if (!gbuffer_shaders) return failure{gbuffer_shaders.error()};
+  auto gbuffer_pipe = dev.make_graphics_pipeline(*gbuffer_shaders->vertex, *gbuffer_shaders->fragment, gbuffer->formats,
+                                                 "gbuffer pass", scene_state);
+  if (!gbuffer_pipe) return failure{gbuffer_pipe.error()};
+  r.pipelines.push_back(*gbuffer_pipe);
+
+  result<compiled> shadow_shaders = failure{"unused"};
+  vk::pipeline shadow_pipe;
+  if (any_shadows) {
+    shadow_shaders = compile(dev, shadow_pass(shader_dir, mode), "shadow pass");
+    if (!shadow_shaders) return failure{shadow_shaders.error()};
+    auto p = dev.make_graphics_pipeline(*shadow_shaders->vertex, *shadow_shaders->fragment, shadow_map.formats, "shadow pass",
+                                        scene_state);
+    if (!p) return failure{p.error()};
+    shadow_pipe = *p;
+    r.pipelines.push_back(shadow_pipe);
+  }
+
+  // Light pipelines by [shadowed][volume]; volumes are drawn with their front faces (the camera is outside).
+  compiled light_shaders[2][2]{};
+  vk::pipeline light_pipes[2][2]{};
+  for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed)
+    for (int vol = 0; vol < 2; ++vol) {
+      const std::string name = std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen");
+      auto sh = compile(dev, light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1), name);
+      if (!sh) return failure{sh.error()};
+      light_shaders[shadowed][vol] = *sh;
+      vk::pipeline_state st;
+      st.additive = true;
+      st.bindings.push_back({1, sizeof(std::uint32_t), VK_VERTEX_INPUT_RATE_INSTANCE});
+      st.attributes.push_back(attribute(3, 1, VK_FORMAT_R32_UINT));
+      if (vol) {
+        st.bindings.push_back({0, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX});
+        st.attributes.push_back(attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT));
+        st.cull = VK_CULL_MODE_BACK_BIT;
+      }
+      auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, light_buffer->formats, name, st);
+      if (!p) return failure{p.error()};
+      light_pipes[shadowed][vol] = *p;
+      r.pipelines.push_back(*p);
+    }
+  auto compose_shaders = compile(dev, compose_pass(shader_dir), "compose pass");
+  if (!compose_shaders) return failure{compose_shaders.error()};
+  auto compose_pipe = dev.make_graphics_pipeline(*compose_shaders->vertex, *compose_shaders->fragment, final_target->formats,
+                                                 "compose pass");
+  if (!compose_pipe) return failure{compose_pipe.error()};
+  r.pipelines.push_back(*compose_pipe);
+
+  // Buffers.
+  const scene_mesh m = flatten(s);
+  std::vector<std::uint32_t> light_ids(s.lights.size());
+  for (std::size_t i = 0; i < light_ids.size(); ++i) light_ids[i] = std::uint32_t(i);
+  const mesh_data sphere = sphere_mesh(1), cone = cone_mesh(16);
+  std::vector<result<VkBuffer>> made{
+      r.buffer(m.positions, vertex_use, "scene positions"),        r.buffer(m.normals, vertex_use, "scene normals"),
+      r.buffer(m.materials, vertex_use, "scene materials"),        r.buffer(m.indices, index_use, "scene indices"),
+      r.buffer(light_ids, vertex_use, "light indices"),            r.buffer(sphere.positions, vertex_use, "point light volume"),
+      r.buffer(sphere.indices, index_use, "point light volume"),   r.buffer(cone.positions, vertex_use, "spot light volume"),
+      r.buffer(cone.indices, index_use, "spot light volume"),
+      r.buffer(std::vector<frame_block>{camera_frame(s, o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "camera frame"),
+      r.buffer(material_blocks(s), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials"),
+      r.buffer(light_blocks(s, o), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights")};
+  for (const auto& b : made)
+    if (!b) return failure{b.error()};
+  const VkBuffer positions = *made[0], normals = *made[1], materials = *made[2], indices = *made[3], light_index = *made[4],
+                 sphere_vertices = *made[5], sphere_indices = *made[6], cone_vertices = *made[7], cone_indices = *made[8],
+                 frame_ubo = *made[9], material_ssbo = *made[10], light_ssbo = *made[11];
+
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  vkCreateSampler(ctx.device, &sci, ctx.allocator, &r.sampler);
+  const std::uint32_t sets = std::uint32_t(4 + 2 * s.lights.size());
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sets},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
+                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8 * sets}};
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pci.maxSets = sets;
+  pci.poolSizeCount = 3;
+  pci.pPoolSizes = sizes;
+  vkCreateDescriptorPool(ctx.device, &pci, ctx.allocator, &r.pool);
+
+  bindings common;
+  common.buffers = {{10, frame_ubo}, {11, material_ssbo}, {12, light_ssbo}};
+  for (int t = 0; t < 4; ++t) common.images[gbuffer_binding + t] = gbuffer->colors[std::size_t(t)].view;
+  common.images[light_binding] = light_buffer->colors[0].view;
+  if (any_shadows)
+    for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) common.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
+
+  frame out;
+  auto timed = [&](const std::string& pass, auto&& record) { out.pass_ms[pass] += dev.submit(record); };
+  const VkDeviceSize zero = 0;
+
+  auto gbuffer_set = make_set(r, *gbuffer_pipe, {gbuffer_shaders->vertex, gbuffer_shaders->fragment}, common);
+  if (!gbuffer_set) return failure{gbuffer_set.error()};
+  auto draw_scene = [&](VkCommandBuffer cmd) {
+    const VkBuffer vb[] = {positions, normals, materials};
+    const VkDeviceSize offsets[] = {0, 0, 0};
+    vkCmdBindVertexBuffers(cmd, 0, 3, vb, offsets);
+    vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, std::uint32_t(m.indices.size()), 1, 0, 0, 0);
+  };
+  timed("gbuffer", [&](VkCommandBuffer cmd) {
+    barrier(cmd);
+    dev.begin_rendering(cmd, *gbuffer, {glm::vec4(0, 0, 0, 1), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer_pipe->handle);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer_pipe->layout, 0, 1, &*gbuffer_set, 0, nullptr);
+    draw_scene(cmd);
+    dev.end_rendering(cmd);
+  });
+
+  dev.submit([&](VkCommandBuffer cmd) {
+    barrier(cmd);
+    dev.begin_rendering(cmd, *light_buffer, {glm::vec4(0.0f)});
+    dev.end_rendering(cmd);
+  });
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const light& l = s.lights[i];
+    const bool shadowed = any_shadows && l.shadows && l.kind == light_kind::spot;
+    if (shadowed) {
+      bindings seen_from_light = common;
+      auto ubo = r.buffer(std::vector<frame_block>{light_frame(s, l, o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "light frame");
+      if (!ubo) return failure{ubo.error()};
+      seen_from_light.buffers[10] = *ubo;
+      auto set = make_set(r, shadow_pipe, {shadow_shaders->vertex, shadow_shaders->fragment}, seen_from_light);
+      if (!set) return failure{set.error()};
+      timed("shadow", [&](VkCommandBuffer cmd) {
+        barrier(cmd);
+        dev.begin_rendering(cmd, shadow_map, std::vector<glm::vec4>(shadow_map.colors.size(), glm::vec4(1.0f)));
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipe.handle);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipe.layout, 0, 1, &*set, 0, nullptr);
+        draw_scene(cmd);
+        dev.end_rendering(cmd);
+      });
+    }
+    const volume v = volume_of(s, l);
+    const int vol = v == volume::fullscreen ? 0 : 1;
+    const vk::pipeline& p = light_pipes[shadowed ? 1 : 0][vol];
+    const compiled& sh = light_shaders[shadowed ? 1 : 0][vol];
+    auto set = make_set(r, p, {sh.vertex, sh.fragment}, common);
+    if (!set) return failure{set.error()};
+    timed("light", [&](VkCommandBuffer cmd) {
+      barrier(cmd);
+      dev.begin_rendering(cmd, *light_buffer, {});
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
+      vkCmdBindVertexBuffers(cmd, 1, 1, &light_index, &zero);
+      if (v == volume::fullscreen) {
+        vkCmdDraw(cmd, 3, 1, 0, std::uint32_t(i));
+      } else {
+        const bool is_sphere = v == volume::sphere;
+        vkCmdBindVertexBuffers(cmd, 0, 1, is_sphere ? &sphere_vertices : &cone_vertices, &zero);
+        vkCmdBindIndexBuffer(cmd, is_sphere ? sphere_indices : cone_indices, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, std::uint32_t(is_sphere ? sphere.indices.size() : cone.indices.size()), 1, 0, 0, std::uint32_t(i));
+      }
+      dev.end_rendering(cmd);
+    });
+  }
+
+  auto compose_set = make_set(r, *compose_pipe, {compose_shaders->vertex, compose_shaders->fragment}, common);
+  if (!compose_set) return failure{compose_set.error()};
+  timed("compose", [&](VkCommandBuffer cmd) {
+    barrier(cmd);
+    dev.begin_rendering(cmd, *final_target, {glm::vec4(0.0f)});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, compose_pipe->handle);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, compose_pipe->layout, 0, 1, &*compose_set, 0, nullptr);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    dev.end_rendering(cmd);
+  });
+  for (const auto& [pass, ms] : out.pass_ms) out.frame_ms += ms;
+
+  const int w = o.width, h = o.height;
+  auto picture = [&](const vk::targets& t, int index, format f, int pw, int ph, view_as how) -> result<image> {
+    auto texels = dev.read_texels(t, index);
+    if (!texels) return failure{texels.error()};
+    return to_image(*texels, f, pw, ph, how, s.view.near_plane, s.view.far_plane);
+  };
+  for (int t = 0; t < 4; ++t) {
+    auto texels = dev.read_texels(*gbuffer, t);
+    if (!texels) return failure{texels.error()};
+    out.gbuffer.push_back(*texels);
+  }
+  auto light_texels = dev.read_texels(*light_buffer, 0);
+  if (!light_texels) return failure{light_texels.error()};
+  out.light_buffer = *light_texels;
+  auto final_image = picture(*final_target, 0, format::rgba8, w, h, view_as::rgb);
+  if (!final_image) return failure{final_image.error()};
+  out.final_image = *final_image;
+  std::vector<std::tuple<std::string, const vk::targets*, int, format, view_as>> wanted{
+      {"diffuse", &*gbuffer, 0, format::rgba8, view_as::rgb},     {"normals", &*gbuffer, 1, format::rgb10a2, view_as::rgb},
+      {"depth", &*gbuffer, 3, format::r32f, view_as::depth},      {"light", &*light_buffer, 0, format::rgba8, view_as::rgb},
+      {"specular", &*light_buffer, 0, format::rgba8, view_as::alpha}};
+  for (const auto& [name, t, index, f, how] : wanted) {
+    auto img = picture(*t, index, f, w, h, how);
+    if (!img) return failure{img.error()};
+    out.buffers.push_back({name, *img});
+  }
+  if (mode == shadow_mode::transparent) {
+    auto img = picture(shadow_map, 1, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb);
+    if (!img) return failure{img.error()};
+    out.buffers.push_back({"shadow_colour", *img});
+  }
+  return out;
+}
+
+}  // namespace dstrans::render

@@ -1,0 +1,18 @@
+// The thesis's renderer on Vulkan: the same passes and shaders as render_gl, on dstrans::vk::device.
+#pragma once
+
+#include <string>
+
+#include <dstrans/result.hpp>
+#include <dstrans/scene.hpp>
+#include <dstrans_vk.hpp>
+
+#include "frame_data.hpp"
+#include "frame_output.hpp"
+
+namespace dstrans::render {
+
+// One frame of `s` on `dev`; `shader_dir` holds the pass shaders (shaders/glsl).
+result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const std::string& shader_dir);
+
+}  // namespace dstrans::render
