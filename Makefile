@@ -1,6 +1,6 @@
 # The README's two commands. Both install the Debian packages dstrans needs when some are missing
 # (apt-get update only then), configure once, build incrementally, then do their job.
-#   make demo       writes what dstrans generates for the thesis's layouts into out/demo/
+#   make demo       renders glass_room on OpenGL and Vulkan into out/demo/, with every buffer
 #   make test       builds and runs every test (ctest) in build/, then again under the sanitizers
 #   make sanitize   the suite alone under AddressSanitizer, LeakSanitizer and UBSan, in build-sanitize/
 
@@ -12,10 +12,10 @@ JOBS ?= $(shell nproc)
 # Debian 12 packages: compiler and build, the core's GLM, glslang and SPIRV-Cross for shader checks,
 # Catch2 for the tests; ccache keeps rebuilds cheap.
 # GL through EGL and Vulkan on Mesa (llvmpipe, lavapipe) with the Khronos validation layer, and
-# nlohmann-json for the command line.
+# nlohmann-json for the command line, stb for PNG files.
 PACKAGES := g++ make cmake ccache libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross catch2 \
             libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri mesa-vulkan-drivers libvulkan-dev \
-            vulkan-validationlayers nlohmann-json3-dev
+            vulkan-validationlayers nlohmann-json3-dev libstb-dev
 
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
@@ -52,13 +52,15 @@ sanitize: deps $(SANITIZE_BUILD)/CMakeCache.txt
 	$(SANITIZE_ENV) ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
 
 demo: build
-	@mkdir -p $(OUT)
-	$(BUILD)/tools/dstrans gen gbuffer thesis > $(OUT)/gbuffer_thesis.glsl
-	$(BUILD)/tools/dstrans gen gbuffer light > $(OUT)/light_buffer.glsl
-	$(BUILD)/tools/dstrans gen gbuffer shadow > $(OUT)/shadow_map.glsl
-	$(BUILD)/tools/dstrans gen interlace rows > $(OUT)/interlace_rows.glsl
-	@for f in $(OUT)/*.glsl; do glslangValidator -S frag $$f >/dev/null || { echo "glslangValidator rejects $$f"; exit 1; }; done
-	@echo "make demo: wrote $$(ls $(OUT)/*.glsl | wc -l) GLSL files to $(OUT)/, each accepted by glslangValidator"
+	$(BUILD)/tools/dstrans render examples/scenes/glass_room.json --backend gl --out $(OUT) --width 960 --height 540
+	$(BUILD)/tools/dstrans render examples/scenes/glass_room.json --backend vk --out $(OUT)/vk --width 960 --height 540
+	@mkdir -p $(OUT)/glsl
+	$(BUILD)/tools/dstrans gen gbuffer thesis > $(OUT)/glsl/gbuffer_thesis.glsl
+	$(BUILD)/tools/dstrans gen gbuffer light > $(OUT)/glsl/light_buffer.glsl
+	$(BUILD)/tools/dstrans gen gbuffer shadow > $(OUT)/glsl/shadow_map.glsl
+	$(BUILD)/tools/dstrans gen interlace rows > $(OUT)/glsl/interlace_rows.glsl
+	@for f in $(OUT)/glsl/*.glsl; do glslangValidator -S frag $$f >/dev/null || { echo "glslangValidator rejects $$f"; exit 1; }; done
+	@echo "make demo: $(OUT)/final.png (OpenGL) and $(OUT)/vk/final.png (Vulkan) with their buffers, and the generated GLSL in $(OUT)/glsl/"
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD) out

@@ -306,3 +306,25 @@ TEST_CASE("lights add: two lights give the sum of each alone, within quantisatio
     CHECK(wrong == 0);
   }
 }
+
+TEST_CASE("a transparent pane seen from behind still shows, its normal turned to the viewer", "[render]") {
+  scene s = example("pane.json");
+  // Look at the pane from behind it (it faces +Z, towards the file's camera).
+  s.view.position = {-0.4f, 1.2f, -2.0f};
+  s.view.target = {-0.4f, 0.9f, 0.6f};
+  for (backend b : backends) {
+    auto f = draw(b, s, small(96, 54));
+    if (!f) continue;
+    INFO(name(b));
+    const glm::vec3 to_camera = glm::normalize(s.view.position - glm::vec3(-0.4f, 0.9f, 0.6f));
+    std::size_t glass = 0, facing = 0;
+    for (std::size_t i = 0; i < f->gbuffer[0].size(); ++i) {
+      const surface g = gbuffer_at(*f, i);
+      if (g.alpha >= 1.0f || g.depth >= 1.0f || g.diffuse.z < 0.99f) continue;  // the blue pane only
+      ++glass;
+      facing += glm::dot(g.normal, to_camera) > 0.5f;
+    }
+    CHECK(glass > 100);
+    CHECK(facing == glass);
+  }
+}

@@ -125,3 +125,31 @@ TEST_CASE("bad scene files get an error that names the field", "[scene]") {
   REQUIRE_FALSE(missing);
   CHECK(missing.error() == "no/such/scene.json: cannot read the scene file");
 }
+
+TEST_CASE("glass_room and its variants: the thesis's scene at equal triangle counts", "[scene]") {
+  std::size_t counts[3] = {};
+  double shares[3] = {};
+  int k = 0;
+  for (const char* file : {"glass_room.json", "glass_room_17.json", "glass_room_0.json"}) {
+    const auto s = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/" + file);
+    INFO(s.error());
+    REQUIRE(s);
+    std::size_t total = 0, clear = 0, shadowed_spots = 0;
+    for (const object& o : s->objects) {
+      total += o.geometry.triangles();
+      if (s->materials[o.material].transparent()) clear += o.geometry.triangles();
+    }
+    for (const light& l : s->lights) shadowed_spots += l.kind == light_kind::spot && l.shadows;
+    CHECK(shadowed_spots == 64);
+    CHECK(s->lights.size() == 67);
+    counts[k] = total;
+    shares[k++] = double(clear) / double(total);
+  }
+  CHECK(counts[0] > 55000);
+  CHECK(counts[0] < 65000);
+  CHECK(counts[1] == counts[0]);
+  CHECK(counts[2] == counts[0]);
+  CHECK(shares[0] == Approx(0.35).margin(0.04));  // about a third
+  CHECK(shares[1] == Approx(0.17).margin(0.005));
+  CHECK(shares[2] == 0.0);
+}

@@ -16,7 +16,9 @@ enum class shadow_mode { off, opaque, transparent };
 struct options {
   int width = 320, height = 180;
   float refraction = 8.0f;      // strength in pixels; 0 turns refraction off
-  float shadow_bias = 0.0005f;  // in shadow-map depth units, towards the light
+  // In shadow-map depth units, towards the light: removes self-shadowing ("acne") at the cost of light
+  // leaking under occluders that touch their receiver; 0.0005 suits the examples' 1024-texel maps.
+  float shadow_bias = 0.0005f;
   int shadow_size = 512;
   shadow_mode shadows = shadow_mode::transparent;  // for spot lights that cast them
 };

@@ -1,5 +1,6 @@
 // dstrans render: one frame of a scene on a backend, with its buffers and pass times (DESIGN.md).
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,7 @@ namespace dstrans::cli {
 namespace {
 const char* const usage =
     "usage: dstrans render <scene.json> --backend gl|vk --out DIR [--width W --height H] [--technique NAME]\n"
-    "       [--refraction PIXELS] [--shadows off|opaque|transparent]\n"
+    "       [--refraction PIXELS] [--shadows off|opaque|transparent] [--shadow-bias DEPTH] [--shadow-size N]\n"
     "techniques: interlaced (the thesis's single-layer method)\n"
     "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
 }  // namespace
@@ -38,6 +39,15 @@ int render(std::vector<std::string> args) {
     o.width = to_int(take_option(args, "--width", "320"), 1, 8192, "--width");
     o.height = to_int(take_option(args, "--height", "180"), 1, 8192, "--height");
     o.refraction = float(to_int(take_option(args, "--refraction", "8"), 0, 256, "--refraction"));
+    o.shadow_size = to_int(take_option(args, "--shadow-size", "1024"), 16, 8192, "--shadow-size");
+    const std::string bias = take_option(args, "--shadow-bias", "0.0005");
+    try {
+      std::size_t used = 0;
+      o.shadow_bias = std::stof(bias, &used);
+      if (used != bias.size() || !(o.shadow_bias >= 0.0f && o.shadow_bias <= 1.0f)) throw std::invalid_argument(bias);
+    } catch (const std::exception&) {
+      throw usage_error{"--shadow-bias must be a number from 0 to 1 (shadow-map depth), not '" + bias + "'"};
+    }
     const std::string shadows = take_option(args, "--shadows", "transparent");
     if (shadows == "off") o.shadows = render::shadow_mode::off;
     else if (shadows == "opaque") o.shadows = render::shadow_mode::opaque;

@@ -132,6 +132,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   }
 
   frame out;
+  std::vector<texel> shadow_picture;
   gl::timer timer;
   auto timed = [&](const std::string& pass, auto&& draw) {
     timer.begin();
@@ -188,6 +189,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         glBindVertexArray(scene_vao);
         glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
       });
+      // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
+      if (mode == shadow_mode::transparent && shadow_picture.empty()) shadow_picture = gl::read_texels(shadow_map, 1);
     }
     timed("light", [&] {
       gl::debug_group g("light pass, light " + std::to_string(i));
@@ -242,9 +245,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
                                            s.view.near_plane, s.view.far_plane)});
   out.buffers.push_back({"light", to_image(gl::read_texels(*light_buffer, 0), format::rgba8, w, h, view_as::rgb)});
   out.buffers.push_back({"specular", to_image(gl::read_texels(*light_buffer, 0), format::rgba8, w, h, view_as::alpha)});
-  if (mode == shadow_mode::transparent)
-    out.buffers.push_back({"shadow_colour", to_image(gl::read_texels(shadow_map, 1), format::rgba8, o.shadow_size,
-                                                     o.shadow_size, view_as::rgb)});
+  if (!shadow_picture.empty())
+    out.buffers.push_back({"shadow_colour", to_image(shadow_picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
   return out;
 }
 

@@ -245,6 +245,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) common.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
 
   frame out;
+  std::vector<texel> shadow_picture;
   auto timed = [&](const std::string& pass, auto&& record) { out.pass_ms[pass] += dev.submit(record); };
   const VkDeviceSize zero = 0;
 
@@ -289,6 +290,12 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         draw_scene(cmd);
         dev.end_rendering(cmd);
       });
+      // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
+      if (mode == shadow_mode::transparent && shadow_picture.empty()) {
+        auto texels = dev.read_texels(shadow_map, 1);
+        if (!texels) return failure{texels.error()};
+        shadow_picture = *texels;
+      }
     }
     const volume v = volume_of(s, l);
     const int vol = v == volume::fullscreen ? 0 : 1;
@@ -352,11 +359,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!img) return failure{img.error()};
     out.buffers.push_back({name, *img});
   }
-  if (mode == shadow_mode::transparent) {
-    auto img = picture(shadow_map, 1, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb);
-    if (!img) return failure{img.error()};
-    out.buffers.push_back({"shadow_colour", *img});
-  }
+  if (!shadow_picture.empty())
+    out.buffers.push_back({"shadow_colour", to_image(shadow_picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
   return out;
 }
 

@@ -138,8 +138,9 @@ object read_object(reader& r, const std::map<std::string, std::uint32_t>& materi
     throw bad_field{r.field("shape") + ": unknown shape '" + kind + "' (box, room, pane, sphere, cylinder, bottle)"};
   }
   const glm::vec3 position = r.vec<3>("position", glm::vec3(0.0f), -big, big);
-  const float rotation = r.number("rotation_y", 0.0f, -360.0f, 360.0f);
-  o.transform = glm::rotate(glm::translate(glm::mat4(1.0f), position), glm::radians(rotation), glm::vec3(0, 1, 0));
+  const float yaw = r.number("rotation_y", 0.0f, -360.0f, 360.0f), pitch = r.number("rotation_x", 0.0f, -360.0f, 360.0f);
+  o.transform = glm::rotate(glm::rotate(glm::translate(glm::mat4(1.0f), position), glm::radians(yaw), glm::vec3(0, 1, 0)),
+                            glm::radians(pitch), glm::vec3(1, 0, 0));
   r.finish();
   return o;
 }

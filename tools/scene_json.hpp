@@ -9,7 +9,8 @@
 //    "materials": {"name": {"diffuse": [r,g,b], "alpha": a, "spec_intensity": s, "spec_power": p,
 //                           "refractive": bool}, ...},
 //    "objects": [{"shape": "box"|"room"|"pane"|"sphere"|"cylinder"|"bottle", "material": "name",
-//                 "position": [x,y,z], "rotation_y": deg, shape parameters...}, ...],
+//                 "position": [x,y,z], "rotation_y": deg, "rotation_x": deg (after the turn about Y),
+//                 shape parameters...}, ...],
 //    "lights": [{"type": "directional"|"point"|"spot", "colour": [r,g,b], "intensity": i,
 //                "position": [x,y,z], "direction": [x,y,z], "range": r, "inner_angle": deg,
 //                "outer_angle": deg, "shadows": bool}, ...]}
