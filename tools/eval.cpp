@@ -14,13 +14,10 @@
 
 #ifdef DSTRANS_HAVE_GL
 #include <dstrans_gl.hpp>
-#include <dstrans_gl_context.hpp>
-#endif
-#ifdef DSTRANS_HAVE_VK
-#include <dstrans_vk_device.hpp>
 #endif
 
 #include "cli.hpp"
+#include "gpu.hpp"
 
 namespace dstrans::cli {
 
@@ -139,37 +136,27 @@ using runner = std::function<result<words>(const formula&, const words&, std::si
 
 result<runner> make_runner(const std::string& backend) {
   if (backend == "cpu") return runner([](const formula& f, const words& a, std::size_t n) -> result<words> { return run_cpu(f, a, n); });
-  if (backend == "gl") {
+  if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be cpu, gl or vk, not '" + backend + "'"};
+  auto opened = open_gpu(backend);
+  if (!opened) return failure{opened.error()};
+  std::shared_ptr<gpu> g = std::move(*opened);
 #ifdef DSTRANS_HAVE_GL
-    auto ctx = gl::headless_context::create();
-    if (!ctx) return failure{"no OpenGL: " + ctx.error()};
-    auto state = std::make_shared<std::pair<std::unique_ptr<gl::headless_context>, gl::formula_runner>>();
-    state->first = std::move(*ctx);
-    return runner([state](const formula& f, const words& a, std::size_t n) { return state->second.run(f, a, n); });
-#else
-    return failure{"this dstrans was built without the OpenGL backend (DSTRANS_BUILD_GL=OFF)"};
-#endif
-  }
-  if (backend == "vk") {
-#ifdef DSTRANS_HAVE_VK
-    auto hd = vk::headless_device::create(false);
-    if (!hd) return failure{"no Vulkan: " + hd.error()};
-    auto dev = vk::device::create((*hd)->ctx());
-    if (!dev) return failure{"no Vulkan: " + dev.error()};
-    // Members go in reverse order: the device before the instance it lives on.
-    struct both {
-      std::unique_ptr<vk::headless_device> hd;
-      std::unique_ptr<vk::device> dev;
+  if (g->gl) {
+    // The runner's programs go before the context: members are destroyed in reverse order.
+    struct gl_state {
+      std::shared_ptr<gpu> context;
+      gl::formula_runner programs;
     };
-    auto state = std::make_shared<both>();
-    state->hd = std::move(*hd);
-    state->dev = std::move(*dev);
-    return runner([state](const formula& f, const words& a, std::size_t n) { return state->dev->run_formula(f, a, n); });
-#else
-    return failure{"this dstrans was built without the Vulkan backend (DSTRANS_BUILD_VK=OFF)"};
-#endif
+    auto state = std::make_shared<gl_state>();
+    state->context = g;
+    return runner([state](const formula& f, const words& a, std::size_t n) { return state->programs.run(f, a, n); });
   }
-  throw usage_error{"--backend must be cpu, gl or vk, not '" + backend + "'"};
+#endif
+#ifdef DSTRANS_HAVE_VK
+  return runner([g](const formula& f, const words& a, std::size_t n) { return g->vk->run_formula(f, a, n); });
+#else
+  return failure{"no backend"};
+#endif
 }
 
 int list(bool as_json) {

@@ -4,16 +4,10 @@
 #include <string>
 #include <vector>
 
-#ifdef DSTRANS_HAVE_GL
-#include <dstrans_gl_context.hpp>
-#include "render_gl.hpp"
-#endif
-#ifdef DSTRANS_HAVE_VK
-#include <dstrans_vk_device.hpp>
-#include "render_vk.hpp"
-#endif
-
 #include "cli.hpp"
+#include "gpu.hpp"
+#include "render_gl.hpp"
+#include "render_vk.hpp"
 #include "scene_json.hpp"
 
 namespace dstrans::cli {
@@ -61,35 +55,18 @@ int render(std::vector<std::string> args) {
       std::fprintf(stderr, "dstrans render: %s\n", s.error().c_str());
       return 1;
     }
-    result<render::frame> f = failure{"no backend"};
-    if (backend == "gl") {
-#ifdef DSTRANS_HAVE_GL
-      auto ctx = gl::headless_context::create();
-      if (!ctx) {
-        std::fprintf(stderr, "dstrans render: no OpenGL: %s\n", ctx.error().c_str());
-        return 1;
-      }
-      f = render::render_gl(*s, o, DSTRANS_SHADER_DIR);
-#else
-      f = failure{"this dstrans was built without the OpenGL backend (DSTRANS_BUILD_GL=OFF)"};
-#endif
-    } else {
-#ifdef DSTRANS_HAVE_VK
-      auto hd = vk::headless_device::create(false);
-      if (!hd) {
-        std::fprintf(stderr, "dstrans render: no Vulkan: %s\n", hd.error().c_str());
-        return 1;
-      }
-      auto dev = vk::device::create((*hd)->ctx());
-      if (!dev) {
-        std::fprintf(stderr, "dstrans render: no Vulkan: %s\n", dev.error().c_str());
-        return 1;
-      }
-      f = render::render_vk(**dev, *s, o, DSTRANS_SHADER_DIR);
-#else
-      f = failure{"this dstrans was built without the Vulkan backend (DSTRANS_BUILD_VK=OFF)"};
-#endif
+    auto g = open_gpu(backend);
+    if (!g) {
+      std::fprintf(stderr, "dstrans render: %s\n", g.error().c_str());
+      return 1;
     }
+    result<render::frame> f = failure{"no backend"};
+#ifdef DSTRANS_HAVE_GL
+    if ((*g)->gl) f = render::render_gl(*s, o, DSTRANS_SHADER_DIR);
+#endif
+#ifdef DSTRANS_HAVE_VK
+    if ((*g)->vk) f = render::render_vk(*(*g)->vk, *s, o, DSTRANS_SHADER_DIR);
+#endif
     if (!f) {
       std::fprintf(stderr, "dstrans render: %s\n", f.error().c_str());
       return 1;
