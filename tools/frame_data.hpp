@@ -13,7 +13,12 @@ namespace dstrans::render {
 
 enum class shadow_mode { off, opaque, transparent };
 
+// interlaced: the thesis's single G-buffer with transparent rows; peeling: deferred depth peeling, two
+// full G-buffers and light buffers (the thesis's 4.1.2 comparison).
+enum class technique { interlaced, peeling };
+
 struct options {
+  technique method = technique::interlaced;
   int width = 320, height = 180;
   float refraction = 8.0f;      // strength in pixels; 0 turns refraction off
   // In shadow-map depth units, towards the light: removes self-shadowing ("acne") at the cost of light

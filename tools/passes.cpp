@@ -1,6 +1,8 @@
 // Implements passes.hpp.
 #include "passes.hpp"
 
+#include <vector>
+
 #include <dstrans/fullscreen.hpp>
 
 namespace dstrans::render {
@@ -9,13 +11,13 @@ namespace {
 
 using I = interlace::rows;
 
-// `src` with the frame interface (and the fragment helpers, for fragment shaders) and then pass shader
-// `file` appended; a failure if a file is missing.
-result<bool> finish(glsl::source& src, const std::string& dir, const std::string& file) {
-  const bool fragment = file.find(".frag.") != std::string::npos;
-  for (const std::string& f : {std::string("frame.glsl"), std::string(fragment ? "fragment.glsl" : ""), file})
-    if (!f.empty())
-      if (auto ok = src.add_file(dir + "/" + f); !ok) return ok;
+// `src` with the frame interface (and the fragment helpers, for a fragment shader) and then `files`
+// appended, the pass shader last; a failure if a file is missing.
+result<bool> finish(glsl::source& src, const std::string& dir, std::vector<std::string> files) {
+  if (files.back().find(".frag.") != std::string::npos) files.insert(files.begin(), "fragment.glsl");
+  files.insert(files.begin(), "frame.glsl");
+  for (const std::string& f : files)
+    if (auto ok = src.add_file(dir + "/" + f); !ok) return ok;
   return true;
 }
 
@@ -34,19 +36,22 @@ const char* shadow_define(shadow_mode mode) {
 }
 
 result<pass_sources> scene_vertex(const std::string& dir, pass_sources p) {
-  if (auto ok = finish(p.vertex, dir, "gbuffer.vert.glsl"); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.vertex, dir, {"gbuffer.vert.glsl"}); !ok) return failure{ok.error()};
   return p;
 }
 
 }  // namespace
 
-result<pass_sources> gbuffer_pass(const std::string& dir) {
+result<pass_sources> gbuffer_pass(const std::string& dir, layer which) {
   pass_sources p;
+  if (which == layer::second) p.fragment.add("#define DST_PEEL\n", __FILE__, __LINE__);
   glsl::layout_options o;
   o.sides = glsl::side::write;
   glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", o);
-  glsl::add_interlace<I>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, "gbuffer.frag.glsl"); !ok) return failure{ok.error()};
+  // The first peeled layer keeps every nearest fragment, transparent or not.
+  if (which == layer::interlaced) glsl::add_interlace<I>(p.fragment);
+  if (which == layer::first) glsl::add_interlace<interlace::none>(p.fragment);
+  if (auto ok = finish(p.fragment, dir, {"gbuffer.frag.glsl"}); !ok) return failure{ok.error()};
   return scene_vertex(dir, std::move(p));
 }
 
@@ -55,7 +60,7 @@ result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode) {
   p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
   add_shadow_layout(p.fragment, mode, glsl::side::write);
   glsl::add_interlace<I>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, "shadow.frag.glsl"); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, dir, {"shadow.frag.glsl"}); !ok) return failure{ok.error()};
   return scene_vertex(dir, std::move(p));
 }
 
@@ -63,7 +68,7 @@ result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool v
   pass_sources p;
   if (volume) p.vertex.add("#define DST_LIGHT_VOLUME\n", __FILE__, __LINE__);
   p.vertex.add_shared(text::dst_fullscreen);
-  if (auto ok = finish(p.vertex, dir, "light.vert.glsl"); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.vertex, dir, {"light.vert.glsl"}); !ok) return failure{ok.error()};
   p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
   glsl::layout_options read;
   read.sides = glsl::side::read;
@@ -74,11 +79,11 @@ result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool v
   glsl::add_layout<thesis_light_buffer>(p.fragment, "light", write);
   if (mode != shadow_mode::off) add_shadow_layout(p.fragment, mode, glsl::side::read);
   glsl::add_interlace<I>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, "light.frag.glsl"); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, dir, {"light.frag.glsl"}); !ok) return failure{ok.error()};
   return p;
 }
 
-result<pass_sources> compose_pass(const std::string& dir) {
+result<pass_sources> compose_pass(const std::string& dir, technique method) {
   pass_sources p{glsl::fullscreen_vertex_shader(), {}};
   glsl::layout_options read;
   read.sides = glsl::side::read;
@@ -86,8 +91,17 @@ result<pass_sources> compose_pass(const std::string& dir) {
   glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
   read.first_binding = light_binding;
   glsl::add_layout<thesis_light_buffer>(p.fragment, "light", read);
-  glsl::add_interlace<I>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, "compose.frag.glsl"); !ok) return failure{ok.error()};
+  std::string other = "interlaced.glsl";
+  if (method == technique::interlaced) {
+    glsl::add_interlace<I>(p.fragment);
+  } else {
+    read.first_binding = gbuffer2_binding;
+    glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer2", read);
+    read.first_binding = light2_binding;
+    glsl::add_layout<thesis_light_buffer>(p.fragment, "light2", read);
+    other = "peeled.glsl";
+  }
+  if (auto ok = finish(p.fragment, dir, {other, "compose.frag.glsl"}); !ok) return failure{ok.error()};
   return p;
 }
 

@@ -15,17 +15,24 @@ namespace dstrans::render {
 // Table 3.3 for transparent shadows; a plain depth map for opaque ones.
 using opaque_shadow_map = layout<surface, target<format::r32f, field::depth>>;
 
-// Texture bindings: the G-buffer's four targets, the shadow map's two, the light buffer.
-constexpr int gbuffer_binding = 0, shadow_binding = 4, light_binding = 6;
+// Texture bindings: the G-buffer's four targets, the shadow map's two, the light buffer; for depth
+// peeling also the second layer's light buffer and G-buffer, and the first layer's depth.
+constexpr int gbuffer_binding = 0, shadow_binding = 4, light_binding = 6, light2_binding = 7, gbuffer2_binding = 8,
+              peel_depth_binding = 13;
+// The blocks of shaders/glsl/frame.glsl; Vulkan puts them in the same set as the textures.
+constexpr int frame_binding = 20, materials_binding = 21, lights_binding = 22;
+
+// Which G-buffer a G-buffer pass writes.
+enum class layer { interlaced, first, second };
 
 struct pass_sources {
   glsl::source vertex, fragment;
 };
 
 // `dir` is the folder of the pass shaders (shaders/glsl).
-result<pass_sources> gbuffer_pass(const std::string& dir);
+result<pass_sources> gbuffer_pass(const std::string& dir, layer which);
 result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode);
 result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume);
-result<pass_sources> compose_pass(const std::string& dir);
+result<pass_sources> compose_pass(const std::string& dir, technique method);
 
 }  // namespace dstrans::render

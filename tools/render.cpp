@@ -16,7 +16,7 @@ namespace {
 const char* const usage =
     "usage: dstrans render <scene.json> --backend gl|vk --out DIR [--width W --height H] [--technique NAME]\n"
     "       [--refraction PIXELS] [--shadows off|opaque|transparent] [--shadow-bias DEPTH] [--shadow-size N]\n"
-    "techniques: interlaced (the thesis's single-layer method)\n"
+    "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2)\n"
     "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
 }  // namespace
 
@@ -48,7 +48,8 @@ int render(std::vector<std::string> args) {
     else if (shadows != "transparent") throw usage_error{"--shadows must be off, opaque or transparent, not '" + shadows + "'"};
     if (args.size() != 1) throw usage_error{"render takes one scene file"};
     if (out.empty()) throw usage_error{"render needs --out DIR"};
-    if (technique != "interlaced") throw usage_error{"unknown technique '" + technique + "' (known: interlaced)"};
+    if (technique == "peeling") o.method = render::technique::peeling;
+    else if (technique != "interlaced") throw usage_error{"unknown technique '" + technique + "' (known: interlaced, peeling)"};
     if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
     const auto s = load_scene(args[0]);
     if (!s) {

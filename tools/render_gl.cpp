@@ -59,9 +59,16 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
                            std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
   const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
 
-  auto gbuffer_prog = r.program(gbuffer_pass(shader_dir), "gbuffer pass");
-  auto compose_prog = r.program(compose_pass(shader_dir), "compose pass");
-  if (!gbuffer_prog) return failure{gbuffer_prog.error()};
+  // One G-buffer and light buffer (interlaced), or one a peeled layer.
+  const bool peeling = o.method == technique::peeling;
+  const int layers = peeling ? 2 : 1;
+  std::vector<GLuint> gbuffer_progs;
+  for (layer which : peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
+    auto p = r.program(gbuffer_pass(shader_dir, which), "gbuffer pass");
+    if (!p) return failure{p.error()};
+    gbuffer_progs.push_back(*p);
+  }
+  auto compose_prog = r.program(compose_pass(shader_dir, o.method), "compose pass");
   if (!compose_prog) return failure{compose_prog.error()};
   // Light programs by [shadowed][volume].
   GLuint light_progs[2][2] = {};
@@ -112,15 +119,24 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   const frame_block camera = camera_frame(s, o);
   const GLuint frame_ubo = r.buffer(std::vector<frame_block>{camera}, "camera frame");
   const GLuint shadow_ubo = r.buffer(std::vector<frame_block>{camera}, "light frame");
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, r.buffer(material_blocks(s), "materials"));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, r.buffer(light_blocks(s, o), "lights"));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, materials_binding, r.buffer(material_blocks(s), "materials"));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lights_binding, r.buffer(light_blocks(s, o), "lights"));
 
-  auto gbuffer = gl::make_targets(describe<thesis_gbuffer>(), o.width, o.height, "gbuffer", true);
-  auto light_buffer = gl::make_targets(describe<thesis_light_buffer>(), o.width, o.height, "light buffer", false);
+  std::vector<gl::targets> gbuffers, light_buffers;
+  for (int k = 0; k < layers; ++k) {
+    const std::string suffix = k ? " 2" : "";
+    auto g = gl::make_targets(describe<thesis_gbuffer>(), o.width, o.height, "gbuffer" + suffix, true);
+    if (!g) return failure{g.error()};
+    r.targets.push_back(*g);
+    gbuffers.push_back(*g);
+    auto l = gl::make_targets(describe<thesis_light_buffer>(), o.width, o.height, "light buffer" + suffix, false);
+    if (!l) return failure{l.error()};
+    r.targets.push_back(*l);
+    light_buffers.push_back(*l);
+  }
   auto final_target = gl::make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
-  if (!gbuffer || !light_buffer || !final_target)
-    return failure{!gbuffer ? gbuffer.error() : !light_buffer ? light_buffer.error() : final_target.error()};
-  r.targets = {*gbuffer, *light_buffer, *final_target};
+  if (!final_target) return failure{final_target.error()};
+  r.targets.push_back(*final_target);
   gl::targets shadow_map;
   if (any_shadows) {
     auto sm = mode == shadow_mode::transparent
@@ -146,28 +162,31 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   glDisable(GL_SCISSOR_TEST);
   glFrontFace(GL_CCW);
 
-  // G-buffer: empty pixels are opaque black at the far plane.
-  timed("gbuffer", [&] {
-    gl::debug_group g("gbuffer pass");
-    gl::bind(*gbuffer);
-    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_COLOR, 0, clear_opaque_black);
-    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_COLOR, 1, clear_zero);
-    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_COLOR, 2, clear_zero);
-    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_COLOR, 3, clear_far);
-    glClearNamedFramebufferfv(gbuffer->framebuffer, GL_DEPTH, 0, clear_far);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 10, frame_ubo);
-    glUseProgram(*gbuffer_prog);
-    glBindVertexArray(scene_vao);
-    glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
-  });
+  // G-buffers: empty pixels are opaque black at the far plane. The second peeled layer reads the first's depth.
+  for (int k = 0; k < layers; ++k)
+    timed("gbuffer", [&] {
+      gl::debug_group g(k ? "gbuffer pass, second layer" : "gbuffer pass");
+      const gl::targets& gb = gbuffers[std::size_t(k)];
+      gl::bind(gb);
+      glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 0, clear_opaque_black);
+      glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 1, clear_zero);
+      glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 2, clear_zero);
+      glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 3, clear_far);
+      glClearNamedFramebufferfv(gb.framebuffer, GL_DEPTH, 0, clear_far);
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+      glDisable(GL_CULL_FACE);
+      glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+      if (k) glBindTextureUnit(GLuint(peel_depth_binding), gbuffers[0].textures[3]);
+      glUseProgram(gbuffer_progs[std::size_t(k)]);
+      glBindVertexArray(scene_vao);
+      glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
+    });
 
-  // Lights, each shadowed spot light right after its own shadow pass (one shadow map serves them all).
-  gl::bind(*light_buffer);
-  glClearNamedFramebufferfv(light_buffer->framebuffer, GL_COLOR, 0, clear_zero);
+  // Lights, each shadowed spot light right after its own shadow pass (one shadow map serves them all),
+  // into each layer's light buffer.
+  for (const gl::targets& lb : light_buffers) glClearNamedFramebufferfv(lb.framebuffer, GL_COLOR, 0, clear_zero);
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const light& l = s.lights[i];
     const bool shadowed = any_shadows && l.shadows && l.kind == light_kind::spot;
@@ -184,7 +203,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         glDisable(GL_CULL_FACE);
         const frame_block lf = light_frame(s, l, o);
         glNamedBufferSubData(shadow_ubo, 0, sizeof lf, &lf);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 10, shadow_ubo);
+        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, shadow_ubo);
         glUseProgram(shadow_prog);
         glBindVertexArray(scene_vao);
         glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
@@ -192,15 +211,17 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
       if (mode == shadow_mode::transparent && shadow_picture.empty()) shadow_picture = gl::read_texels(shadow_map, 1);
     }
+    for (int k = 0; k < layers; ++k)
     timed("light", [&] {
-      gl::debug_group g("light pass, light " + std::to_string(i));
-      gl::bind(*light_buffer);
-      glBindBufferBase(GL_UNIFORM_BUFFER, 10, frame_ubo);
+      gl::debug_group g("light pass, light " + std::to_string(i) + (k ? ", second layer" : ""));
+      gl::bind(light_buffers[std::size_t(k)]);
+      glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
       glDisable(GL_DEPTH_TEST);
       glDepthMask(GL_FALSE);
       glEnable(GL_BLEND);
       glBlendFunc(GL_ONE, GL_ONE);
-      for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffer->textures[std::size_t(t)]);
+      for (int t = 0; t < 4; ++t)
+        glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[std::size_t(k)].textures[std::size_t(t)]);
       if (shadowed)
         for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
           glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
@@ -227,24 +248,32 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 10, frame_ubo);
-    for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffer->textures[std::size_t(t)]);
-    glBindTextureUnit(GLuint(light_binding), light_buffer->textures[0]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+    for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+    glBindTextureUnit(GLuint(light_binding), light_buffers[0].textures[0]);
+    if (peeling) {
+      for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer2_binding + t), gbuffers[1].textures[std::size_t(t)]);
+      glBindTextureUnit(GLuint(light2_binding), light_buffers[1].textures[0]);
+    }
     glUseProgram(*compose_prog);
     gl::draw_fullscreen(fullscreen_vao);
   });
   for (const auto& [pass, ms] : out.pass_ms) out.frame_ms += ms;
 
   const int w = o.width, h = o.height;
-  for (int t = 0; t < 4; ++t) out.gbuffer.push_back(gl::read_texels(*gbuffer, t));
-  out.light_buffer = gl::read_texels(*light_buffer, 0);
+  for (int t = 0; t < 4; ++t) out.gbuffer.push_back(gl::read_texels(gbuffers[0], t));
+  out.light_buffer = gl::read_texels(light_buffers[0], 0);
   out.final_image = to_image(gl::read_texels(*final_target, 0), format::rgba8, w, h, view_as::rgb);
-  out.buffers.push_back({"diffuse", to_image(gl::read_texels(*gbuffer, 0), format::rgba8, w, h, view_as::rgb)});
-  out.buffers.push_back({"normals", to_image(gl::read_texels(*gbuffer, 1), format::rgb10a2, w, h, view_as::rgb)});
-  out.buffers.push_back({"depth", to_image(gl::read_texels(*gbuffer, 3), format::r32f, w, h, view_as::depth,
-                                           s.view.near_plane, s.view.far_plane)});
-  out.buffers.push_back({"light", to_image(gl::read_texels(*light_buffer, 0), format::rgba8, w, h, view_as::rgb)});
-  out.buffers.push_back({"specular", to_image(gl::read_texels(*light_buffer, 0), format::rgba8, w, h, view_as::alpha)});
+  for (int k = 0; k < layers; ++k) {
+    const std::string suffix = k ? "_2" : "";
+    const gl::targets &gb = gbuffers[std::size_t(k)], &lb = light_buffers[std::size_t(k)];
+    out.buffers.push_back({"diffuse" + suffix, to_image(gl::read_texels(gb, 0), format::rgba8, w, h, view_as::rgb)});
+    out.buffers.push_back({"normals" + suffix, to_image(gl::read_texels(gb, 1), format::rgb10a2, w, h, view_as::rgb)});
+    out.buffers.push_back({"depth" + suffix, to_image(gl::read_texels(gb, 3), format::r32f, w, h, view_as::depth,
+                                                      s.view.near_plane, s.view.far_plane)});
+    out.buffers.push_back({"light" + suffix, to_image(gl::read_texels(lb, 0), format::rgba8, w, h, view_as::rgb)});
+    out.buffers.push_back({"specular" + suffix, to_image(gl::read_texels(lb, 0), format::rgba8, w, h, view_as::alpha)});
+  }
   if (!shadow_picture.empty())
     out.buffers.push_back({"shadow_colour", to_image(shadow_picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
   return out;

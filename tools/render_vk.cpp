@@ -127,12 +127,21 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
                            std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
   const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
 
-  auto gbuffer = dev.make_targets(describe<thesis_gbuffer>(), o.width, o.height, "gbuffer", true);
-  if (!gbuffer) return failure{gbuffer.error()};
-  r.targets.push_back(*gbuffer);
-  auto light_buffer = dev.make_targets(describe<thesis_light_buffer>(), o.width, o.height, "light buffer", false);
-  if (!light_buffer) return failure{light_buffer.error()};
-  r.targets.push_back(*light_buffer);
+  // One G-buffer and light buffer (interlaced), or one a peeled layer.
+  const bool peeling = o.method == technique::peeling;
+  const int layers = peeling ? 2 : 1;
+  std::vector<vk::targets> gbuffers, light_buffers;
+  for (int k = 0; k < layers; ++k) {
+    const std::string suffix = k ? " 2" : "";
+    auto g = dev.make_targets(describe<thesis_gbuffer>(), o.width, o.height, "gbuffer" + suffix, true);
+    if (!g) return failure{g.error()};
+    r.targets.push_back(*g);
+    gbuffers.push_back(*g);
+    auto l = dev.make_targets(describe<thesis_light_buffer>(), o.width, o.height, "light buffer" + suffix, false);
+    if (!l) return failure{l.error()};
+    r.targets.push_back(*l);
+    light_buffers.push_back(*l);
+  }
   auto final_target = dev.make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
   if (!final_target) return failure{final_target.error()};
   r.targets.push_back(*final_target);
@@ -155,12 +164,17 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   scene_state.attributes = {attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT), attribute(1, 1, VK_FORMAT_R32G32B32_SFLOAT),
                             attribute(2, 2, VK_FORMAT_R32_UINT)};
   scene_state.depth_attachment = scene_state.depth_test = scene_state.depth_write = true;
-  auto gbuffer_shaders = compile(dev, gbuffer_pass(shader_dir), "gbuffer pass");
-  if (!gbuffer_shaders) return failure{gbuffer_shaders.error()};
-  auto gbuffer_pipe = dev.make_graphics_pipeline(*gbuffer_shaders->vertex, *gbuffer_shaders->fragment, gbuffer->formats,
-                                                 "gbuffer pass", scene_state);
-  if (!gbuffer_pipe) return failure{gbuffer_pipe.error()};
-  r.pipelines.push_back(*gbuffer_pipe);
+  std::vector<compiled> gbuffer_shaders;
+  std::vector<vk::pipeline> gbuffer_pipes;
+  for (layer which : peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
+    auto sh = compile(dev, gbuffer_pass(shader_dir, which), "gbuffer pass");
+    if (!sh) return failure{sh.error()};
+    auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, gbuffers[0].formats, "gbuffer pass", scene_state);
+    if (!p) return failure{p.error()};
+    r.pipelines.push_back(*p);
+    gbuffer_shaders.push_back(*sh);
+    gbuffer_pipes.push_back(*p);
+  }
 
   result<compiled> shadow_shaders = failure{"unused"};
   vk::pipeline shadow_pipe;
@@ -192,12 +206,12 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         st.attributes.push_back(attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT));
         st.cull = VK_CULL_MODE_BACK_BIT;
       }
-      auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, light_buffer->formats, name, st);
+      auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, light_buffers[0].formats, name, st);
       if (!p) return failure{p.error()};
       light_pipes[shadowed][vol] = *p;
       r.pipelines.push_back(*p);
     }
-  auto compose_shaders = compile(dev, compose_pass(shader_dir), "compose pass");
+  auto compose_shaders = compile(dev, compose_pass(shader_dir, o.method), "compose pass");
   if (!compose_shaders) return failure{compose_shaders.error()};
   auto compose_pipe = dev.make_graphics_pipeline(*compose_shaders->vertex, *compose_shaders->fragment, final_target->formats,
                                                  "compose pass");
@@ -237,20 +251,29 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   pci.pPoolSizes = sizes;
   vkCreateDescriptorPool(ctx.device, &pci, ctx.allocator, &r.pool);
 
-  bindings common;
-  common.buffers = {{10, frame_ubo}, {11, material_ssbo}, {12, light_ssbo}};
-  for (int t = 0; t < 4; ++t) common.images[gbuffer_binding + t] = gbuffer->colors[std::size_t(t)].view;
-  common.images[light_binding] = light_buffer->colors[0].view;
-  if (any_shadows)
-    for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) common.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
+  // What each layer's passes bind: its G-buffer at the G-buffer bindings; the compose pass sees both.
+  std::vector<bindings> per_layer(static_cast<std::size_t>(layers));
+  for (int k = 0; k < layers; ++k) {
+    bindings& b = per_layer[std::size_t(k)];
+    b.buffers = {{frame_binding, frame_ubo}, {materials_binding, material_ssbo}, {lights_binding, light_ssbo}};
+    for (int t = 0; t < 4; ++t) b.images[gbuffer_binding + t] = gbuffers[std::size_t(k)].colors[std::size_t(t)].view;
+    b.images[light_binding] = light_buffers[std::size_t(k)].colors[0].view;
+    b.images[peel_depth_binding] = gbuffers[0].colors[3].view;
+    if (any_shadows)
+      for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) b.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
+  }
+  bindings common = per_layer[0];
+  if (peeling) {
+    for (int t = 0; t < 4; ++t) common.images[gbuffer2_binding + t] = gbuffers[1].colors[std::size_t(t)].view;
+    common.images[light2_binding] = light_buffers[1].colors[0].view;
+  }
 
   frame out;
   std::vector<texel> shadow_picture;
   auto timed = [&](const std::string& pass, auto&& record) { out.pass_ms[pass] += dev.submit(record); };
   const VkDeviceSize zero = 0;
 
-  auto gbuffer_set = make_set(r, *gbuffer_pipe, {gbuffer_shaders->vertex, gbuffer_shaders->fragment}, common);
-  if (!gbuffer_set) return failure{gbuffer_set.error()};
+
   auto draw_scene = [&](VkCommandBuffer cmd) {
     const VkBuffer vb[] = {positions, normals, materials};
     const VkDeviceSize offsets[] = {0, 0, 0};
@@ -258,19 +281,27 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cmd, std::uint32_t(m.indices.size()), 1, 0, 0, 0);
   };
-  timed("gbuffer", [&](VkCommandBuffer cmd) {
-    barrier(cmd);
-    dev.begin_rendering(cmd, *gbuffer, {glm::vec4(0, 0, 0, 1), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)});
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer_pipe->handle);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer_pipe->layout, 0, 1, &*gbuffer_set, 0, nullptr);
-    draw_scene(cmd);
-    dev.end_rendering(cmd);
-  });
+  // G-buffers: empty pixels are opaque black at the far plane. The second peeled layer reads the first's depth.
+  for (int k = 0; k < layers; ++k) {
+    const vk::pipeline& p = gbuffer_pipes[std::size_t(k)];
+    auto set = make_set(r, p, {gbuffer_shaders[std::size_t(k)].vertex, gbuffer_shaders[std::size_t(k)].fragment}, per_layer[0]);
+    if (!set) return failure{set.error()};
+    timed("gbuffer", [&](VkCommandBuffer cmd) {
+      barrier(cmd);
+      dev.begin_rendering(cmd, gbuffers[std::size_t(k)], {glm::vec4(0, 0, 0, 1), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)});
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
+      draw_scene(cmd);
+      dev.end_rendering(cmd);
+    });
+  }
 
   dev.submit([&](VkCommandBuffer cmd) {
     barrier(cmd);
-    dev.begin_rendering(cmd, *light_buffer, {glm::vec4(0.0f)});
-    dev.end_rendering(cmd);
+    for (const vk::targets& lb : light_buffers) {
+      dev.begin_rendering(cmd, lb, {glm::vec4(0.0f)});
+      dev.end_rendering(cmd);
+    }
   });
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const light& l = s.lights[i];
@@ -279,7 +310,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       bindings seen_from_light = common;
       auto ubo = r.buffer(std::vector<frame_block>{light_frame(s, l, o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "light frame");
       if (!ubo) return failure{ubo.error()};
-      seen_from_light.buffers[10] = *ubo;
+      seen_from_light.buffers[frame_binding] = *ubo;
       auto set = make_set(r, shadow_pipe, {shadow_shaders->vertex, shadow_shaders->fragment}, seen_from_light);
       if (!set) return failure{set.error()};
       timed("shadow", [&](VkCommandBuffer cmd) {
@@ -301,11 +332,12 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     const int vol = v == volume::fullscreen ? 0 : 1;
     const vk::pipeline& p = light_pipes[shadowed ? 1 : 0][vol];
     const compiled& sh = light_shaders[shadowed ? 1 : 0][vol];
-    auto set = make_set(r, p, {sh.vertex, sh.fragment}, common);
+    for (int k = 0; k < layers; ++k) {
+    auto set = make_set(r, p, {sh.vertex, sh.fragment}, per_layer[std::size_t(k)]);
     if (!set) return failure{set.error()};
     timed("light", [&](VkCommandBuffer cmd) {
       barrier(cmd);
-      dev.begin_rendering(cmd, *light_buffer, {});
+      dev.begin_rendering(cmd, light_buffers[std::size_t(k)], {});
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
       vkCmdBindVertexBuffers(cmd, 1, 1, &light_index, &zero);
@@ -319,6 +351,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       }
       dev.end_rendering(cmd);
     });
+    }
   }
 
   auto compose_set = make_set(r, *compose_pipe, {compose_shaders->vertex, compose_shaders->fragment}, common);
@@ -340,20 +373,26 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     return to_image(*texels, f, pw, ph, how, s.view.near_plane, s.view.far_plane);
   };
   for (int t = 0; t < 4; ++t) {
-    auto texels = dev.read_texels(*gbuffer, t);
+    auto texels = dev.read_texels(gbuffers[0], t);
     if (!texels) return failure{texels.error()};
     out.gbuffer.push_back(*texels);
   }
-  auto light_texels = dev.read_texels(*light_buffer, 0);
+  auto light_texels = dev.read_texels(light_buffers[0], 0);
   if (!light_texels) return failure{light_texels.error()};
   out.light_buffer = *light_texels;
   auto final_image = picture(*final_target, 0, format::rgba8, w, h, view_as::rgb);
   if (!final_image) return failure{final_image.error()};
   out.final_image = *final_image;
-  std::vector<std::tuple<std::string, const vk::targets*, int, format, view_as>> wanted{
-      {"diffuse", &*gbuffer, 0, format::rgba8, view_as::rgb},     {"normals", &*gbuffer, 1, format::rgb10a2, view_as::rgb},
-      {"depth", &*gbuffer, 3, format::r32f, view_as::depth},      {"light", &*light_buffer, 0, format::rgba8, view_as::rgb},
-      {"specular", &*light_buffer, 0, format::rgba8, view_as::alpha}};
+  std::vector<std::tuple<std::string, const vk::targets*, int, format, view_as>> wanted;
+  for (int k = 0; k < layers; ++k) {
+    const std::string suffix = k ? "_2" : "";
+    const vk::targets *gb = &gbuffers[std::size_t(k)], *lb = &light_buffers[std::size_t(k)];
+    wanted.insert(wanted.end(), {{"diffuse" + suffix, gb, 0, format::rgba8, view_as::rgb},
+                                 {"normals" + suffix, gb, 1, format::rgb10a2, view_as::rgb},
+                                 {"depth" + suffix, gb, 3, format::r32f, view_as::depth},
+                                 {"light" + suffix, lb, 0, format::rgba8, view_as::rgb},
+                                 {"specular" + suffix, lb, 0, format::rgba8, view_as::alpha}});
+  }
   for (const auto& [name, t, index, f, how] : wanted) {
     auto img = picture(*t, index, f, w, h, how);
     if (!img) return failure{img.error()};

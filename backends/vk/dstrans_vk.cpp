@@ -29,6 +29,7 @@ VkImageMemoryBarrier image_barrier(VkImage img, VkImageLayout from, VkImageLayou
 // Set 0 of a pipeline, from what its shaders declare.
 result<VkDescriptorSetLayout> set_layout_from(const context& ctx, const std::vector<const shader*>& stages) {
   std::map<int, VkDescriptorSetLayoutBinding> bindings;
+  int clash = -1;
   for (const shader* s : stages) {
     const VkShaderStageFlags flag = s->stage == spirv::stage::vertex     ? VK_SHADER_STAGE_VERTEX_BIT
                                     : s->stage == spirv::stage::fragment ? VK_SHADER_STAGE_FRAGMENT_BIT
@@ -36,7 +37,12 @@ result<VkDescriptorSetLayout> set_layout_from(const context& ctx, const std::vec
     auto add = [&](const std::vector<spirv::resource>& list, VkDescriptorType type) -> bool {
       for (const auto& r : list) {
         if (r.set != 0) return false;
+        const bool seen = bindings.count(r.binding) > 0;
         auto& b = bindings[r.binding];
+        if (seen && b.descriptorType != type) {
+          clash = r.binding;
+          return false;
+        }
         b.binding = std::uint32_t(r.binding);
         b.descriptorType = type;
         b.descriptorCount = 1;
@@ -49,7 +55,8 @@ result<VkDescriptorSetLayout> set_layout_from(const context& ctx, const std::vec
         !add(refl.uniform_buffers, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER) ||
         !add(refl.storage_buffers, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) ||
         !add(refl.storage_images, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE))
-      return failure{"dstrans pipelines bind everything in descriptor set 0"};
+      return failure{clash >= 0 ? "binding " + std::to_string(clash) + " is declared as two kinds of resource"
+                                : std::string("dstrans pipelines bind everything in descriptor set 0")};
   }
   std::vector<VkDescriptorSetLayoutBinding> list;
   for (auto& [binding, b] : bindings) list.push_back(b);

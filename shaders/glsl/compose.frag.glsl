@@ -1,33 +1,37 @@
 // The compose pass (thesis 3.3): de-interlacing, refraction with the partner-row fallback and depth
-// rejection, and the blend of Eq. 3.3 with specular and ambient light.
+// rejection, and the blend of Eq. 3.3 with specular and ambient light. The technique says where the
+// other layer of a pixel lives (interlaced.glsl, peeled.glsl): dst_other and dst_other_light.
 layout(location = 0) out vec4 colour;
 
 void main() {
   ivec2 size = frame.size.xy;
-  ivec2 p = dst_pixel(), q = dst_interlace_partner(p, size);
-  dst_surface a = dst_gbuffer_read(p), b = dst_gbuffer_read(q);
+  ivec2 p = dst_pixel();
+  dst_surface a = dst_gbuffer_read(p), b = dst_other(p);
+  dst_light_sample light_a = dst_light_read(p), light_b = dst_other_light(p);
   vec3 ambient = frame.ambient.xyz;
   if (a.alpha >= 1.0f && b.alpha >= 1.0f) {
-    colour = vec4(dst_shade(a, dst_light_read(p), ambient), 1.0f);  // empty pixels are cleared to black
+    colour = vec4(dst_shade(a, light_a, ambient), 1.0f);  // empty pixels are cleared to black
     return;
   }
   bool a_transparent = a.alpha <= b.alpha;
   dst_surface t = a_transparent ? a : b;
-  dst_light_sample light_t = dst_light_read(a_transparent ? p : q);
+  dst_light_sample light_t = a_transparent ? light_a : light_b;
   dst_surface o = a_transparent ? b : a;
-  dst_light_sample light_o = dst_light_read(a_transparent ? q : p);
-  // Refraction: the sample moved by the transparent surface's screen-space normal, or its partner when it
-  // holds glass too; a sample in front of the glass would leak into it, so the background stays then.
+  dst_light_sample light_o = a_transparent ? light_b : light_a;
+  // Refraction: the sample moved by the transparent surface's screen-space normal, or the layer behind
+  // it when it holds glass too; a sample in front of the glass would leak into it, so the background
+  // stays then.
   vec3 view_normal = mat3(frame.view) * t.normal;
   ivec2 moved = clamp(p + ivec2(round(dst_refraction_offset(view_normal, frame.params.x))), ivec2(0), size - 1);
   dst_surface r = dst_gbuffer_read(moved);
+  dst_light_sample light_r = dst_light_read(moved);
   if (r.alpha < 1.0f) {
-    moved = dst_interlace_partner(moved, size);
-    r = dst_gbuffer_read(moved);
+    r = dst_other(moved);
+    light_r = dst_other_light(moved);
   }
   if (r.alpha >= 1.0f && !dst_refraction_rejected(t.depth, r.depth)) {
     o = r;
-    light_o = dst_light_read(moved);
+    light_o = light_r;
   }
   colour = vec4(dst_compose(o, light_o, t, light_t, ambient), 1.0f);
 }

@@ -1,12 +1,12 @@
 // What every dstrans pass knows about the frame, the materials and the lights (std140/std430, set 0).
-// The C++ side mirrors these blocks in tools/frame_data.hpp.
+// The C++ side mirrors these blocks in tools/frame_data.hpp, and their bindings in tools/passes.hpp.
 #ifdef VULKAN
 #define DST_VERTEX_ID gl_VertexIndex
 #else
 #define DST_VERTEX_ID gl_VertexID
 #endif
 
-layout(std140, binding = 10) uniform dst_frame {
+layout(std140, binding = 20) uniform dst_frame {
   mat4 view_proj;       // world to clip of the camera (or of the light, in the shadow pass)
   mat4 inv_view_proj;   // clip to world of the camera
   mat4 view;            // world to view of the camera
@@ -20,7 +20,7 @@ struct dst_material_data {
   vec4 diffuse_alpha;
   vec4 specular;        // x: intensity, y: power, z: refractive
 };
-layout(std430, binding = 11) readonly buffer dst_materials { dst_material_data materials[]; };
+layout(std430, binding = 21) readonly buffer dst_materials { dst_material_data materials[]; };
 
 struct dst_light_data {
   vec4 position_range;   // xyz, range
@@ -30,4 +30,4 @@ struct dst_light_data {
   mat4 shadow_view_proj; // world to the shadow map's clip space
   mat4 volume;           // unit sphere or unit cone to world
 };
-layout(std430, binding = 12) readonly buffer dst_lights { dst_light_data lights[]; };
+layout(std430, binding = 22) readonly buffer dst_lights { dst_light_data lights[]; };
