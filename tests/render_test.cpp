@@ -113,19 +113,38 @@ std::size_t mismatches(const frame& f, const std::function<glm::vec3(glm::ivec2)
 
 }  // namespace
 
-TEST_CASE("GL and Vulkan render the same image, at even and odd sizes, with either technique", "[render][gl][vk]") {
+TEST_CASE("GL and Vulkan render the same image, at even and odd sizes, with every technique", "[render][gl][vk]") {
   const scene s = example("pane.json");
-  for (render::technique t : {render::technique::interlaced, render::technique::peeling})
+  for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward,
+                              render::technique::forward_depth})
     for (glm::ivec2 size : {glm::ivec2(160, 90), glm::ivec2(161, 91)}) {
       options o = small(size.x, size.y);
       o.method = t;
       auto g = draw(backend::gl, s, o);
       auto v = draw(backend::vk, s, o);
       if (!g || !v) continue;
-      INFO(size.x << "x" << size.y << (t == render::technique::peeling ? ", peeling" : ", interlaced"));
+      INFO(size.x << "x" << size.y << ", technique " << int(t));
       CHECK(rmse(g->final_image, v->final_image) < 1.0);
-      CHECK(g->gbuffer[0] == v->gbuffer[0]);  // the same rows hold the same glass
+      if (!render::is_forward(t)) {
+        const bool same_glass_rows = g->gbuffer[0] == v->gbuffer[0];  // diffuse and alpha: the same surfaces
+        CHECK(same_glass_rows);
+      }
     }
+}
+
+TEST_CASE("forward rendering with depth shades as the deferred renderer does", "[render][forward]") {
+  const scene s = example("pane.json");
+  for (backend b : backends) {
+    options o = small(160, 90);
+    auto deferred = draw(b, s, o);
+    o.method = render::technique::forward_depth;
+    auto forward = draw(b, s, o);
+    if (!deferred || !forward) continue;
+    INFO(name(b));
+    // The same light, once accumulated in the RGBA8 light buffer and multiplied afterwards, once
+    // multiplied first and accumulated in the RGBA8 colour: they differ by quantisation only.
+    CHECK(rmse(deferred->final_image, forward->final_image) < 2.0);
+  }
 }
 
 TEST_CASE("depth peeling keeps glass whole in its first layer and the opaque surface behind in its second", "[render][peeling]") {
@@ -219,34 +238,43 @@ TEST_CASE("refraction strength 0 is the de-interlaced blend of Eq. 3.3", "[rende
 
 TEST_CASE("an opaque object in front of a glass pane never shows inside the pane", "[render][refraction]") {
   scene s = example("pane.json");
-  // A box in front of the pane, half over it; it is drawn red, then blue: outside the box's own pixels,
-  // nothing may change, at any refraction strength.
+  // A box in front of the pane, half over it; it is drawn red, then blue: outside the box's own pixels
+  // (and their interlace partners), nothing may change, at any refraction strength, with every technique
+  // that rejects by depth.
   const auto box_material = std::uint32_t(s.materials.size());
   s.materials.push_back(material{{1.0f, 0.0f, 0.0f}});
   s.objects.push_back({shape_box({0.5f, 0.5f, 0.1f}), glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, 1.1f, 1.6f)), box_material});
+  auto coloured = [&](backend b, options o, glm::vec3 colour) {
+    s.materials[box_material].diffuse = colour;
+    return draw(b, s, o);
+  };
   for (float strength : {4.0f, 16.0f, 48.0f})
     for (backend b : backends) {
       options o = small(160, 90);
       o.refraction = strength;
-      s.materials[box_material].diffuse = {1.0f, 0.0f, 0.0f};
-      auto red = draw(b, s, o);
-      s.materials[box_material].diffuse = {0.0f, 0.0f, 1.0f};
-      auto blue = draw(b, s, o);
+      // Where the box is: from the interlaced G-buffers, the same geometry every technique draws.
+      auto red = coloured(b, o, {1.0f, 0.0f, 0.0f}), blue = coloured(b, o, {0.0f, 0.0f, 1.0f});
       if (!red || !blue) continue;
-      INFO(name(b) << ", strength " << strength);
-      std::size_t box = 0, leaks = 0;
+      std::vector<bool> box(160 * 90, false);
+      std::size_t box_pixels = 0;
       for (int y = 0; y < 90; ++y)
         for (int x = 0; x < 160; ++x) {
           const glm::ivec2 q = interlace::rows::partner({x, y}, {160, 90});
           const std::size_t i = std::size_t(y * 160 + x), j = std::size_t(q.y * 160 + q.x);
-          if (red->gbuffer[0][i] != blue->gbuffer[0][i] || red->gbuffer[0][j] != blue->gbuffer[0][j]) {
-            ++box;  // the box itself is at this pixel or its partner
-            continue;
-          }
-          for (std::size_t c = 0; c < 3; ++c) leaks += red->final_image.rgba[4 * i + c] != blue->final_image.rgba[4 * i + c];
+          box[i] = red->gbuffer[0][i] != blue->gbuffer[0][i] || red->gbuffer[0][j] != blue->gbuffer[0][j];
+          box_pixels += box[i];
         }
-      CHECK(box > 50);
-      CHECK(leaks == 0);
+      CHECK(box_pixels > 50);
+      for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward_depth}) {
+        o.method = t;
+        auto r = coloured(b, o, {1.0f, 0.0f, 0.0f}), u = coloured(b, o, {0.0f, 0.0f, 1.0f});
+        INFO(name(b) << ", strength " << strength << ", technique " << int(t));
+        std::size_t leaks = 0;
+        for (std::size_t i = 0; i < box.size(); ++i)
+          if (!box[i])
+            for (std::size_t c = 0; c < 3; ++c) leaks += r->final_image.rgba[4 * i + c] != u->final_image.rgba[4 * i + c];
+        CHECK(leaks == 0);
+      }
     }
 }
 

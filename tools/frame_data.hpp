@@ -14,8 +14,10 @@ namespace dstrans::render {
 enum class shadow_mode { off, opaque, transparent };
 
 // interlaced: the thesis's single G-buffer with transparent rows; peeling: deferred depth peeling, two
-// full G-buffers and light buffers (the thesis's 4.1.2 comparison).
-enum class technique { interlaced, peeling };
+// full G-buffers and light buffers (4.1.2); forward, forward_depth: multi-pass forward rendering with
+// the same interlacing, refraction checked by de-interlaced alpha or by depth (4.1.3, 4.1.4).
+enum class technique { interlaced, peeling, forward, forward_depth };
+inline bool is_forward(technique t) { return t == technique::forward || t == technique::forward_depth; }
 
 struct options {
   technique method = technique::interlaced;

@@ -79,7 +79,7 @@ result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool v
   glsl::add_layout<thesis_light_buffer>(p.fragment, "light", write);
   if (mode != shadow_mode::off) add_shadow_layout(p.fragment, mode, glsl::side::read);
   glsl::add_interlace<I>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, {"light.frag.glsl"}); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, dir, {"lighting.glsl", "light.frag.glsl"}); !ok) return failure{ok.error()};
   return p;
 }
 
@@ -102,6 +102,36 @@ result<pass_sources> compose_pass(const std::string& dir, technique method) {
     other = "peeled.glsl";
   }
   if (auto ok = finish(p.fragment, dir, {other, "compose.frag.glsl"}); !ok) return failure{ok.error()};
+  return p;
+}
+
+std::vector<target_desc> forward_targets(bool with_depth) {
+  std::vector<target_desc> t{{format::rgba8, {"colour.r", "colour.g", "colour.b", "alpha"}},
+                             {format::rgb10a2, {"normal.x", "normal.y", "normal.z", "unused"}}};
+  if (with_depth) t.push_back({format::r32f, {"depth"}});
+  return t;
+}
+
+result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, bool with_depth, shadow_mode mode) {
+  pass_sources p;
+  if (with_depth) p.fragment.add("#define DST_FORWARD_DEPTH\n", __FILE__, __LINE__);
+  if (stage == forward_stage::light) {
+    p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
+    if (mode != shadow_mode::off) add_shadow_layout(p.fragment, mode, glsl::side::read);
+  }
+  glsl::add_interlace<I>(p.fragment);
+  std::vector<std::string> files;
+  switch (stage) {
+    case forward_stage::ambient: files = {"forward.glsl", "forward_ambient.frag.glsl"}; break;
+    case forward_stage::light: files = {"lighting.glsl", "forward.glsl", "forward_light.frag.glsl"}; break;
+    case forward_stage::blend: files = {"forward_blend.frag.glsl"}; break;
+  }
+  if (auto ok = finish(p.fragment, dir, files); !ok) return failure{ok.error()};
+  if (stage == forward_stage::blend) {
+    p.vertex = glsl::fullscreen_vertex_shader();
+    return p;
+  }
+  if (auto ok = finish(p.vertex, dir, {"forward.vert.glsl"}); !ok) return failure{ok.error()};
   return p;
 }
 

@@ -35,4 +35,10 @@ result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode);
 result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume);
 result<pass_sources> compose_pass(const std::string& dir, technique method);
 
+// The forward renderer's passes: ambient (colour, normal, depth), one light, and the blend.
+enum class forward_stage { ambient, light, blend };
+result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, bool with_depth, shadow_mode mode);
+// Its targets: lit colour and alpha, the normal, and with depth the window depth.
+std::vector<target_desc> forward_targets(bool with_depth);
+
 }  // namespace dstrans::render

@@ -16,7 +16,8 @@ namespace {
 const char* const usage =
     "usage: dstrans render <scene.json> --backend gl|vk --out DIR [--width W --height H] [--technique NAME]\n"
     "       [--refraction PIXELS] [--shadows off|opaque|transparent] [--shadow-bias DEPTH] [--shadow-size N]\n"
-    "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2)\n"
+    "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
+    "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
 }  // namespace
 
@@ -49,7 +50,10 @@ int render(std::vector<std::string> args) {
     if (args.size() != 1) throw usage_error{"render takes one scene file"};
     if (out.empty()) throw usage_error{"render needs --out DIR"};
     if (technique == "peeling") o.method = render::technique::peeling;
-    else if (technique != "interlaced") throw usage_error{"unknown technique '" + technique + "' (known: interlaced, peeling)"};
+    else if (technique == "forward") o.method = render::technique::forward;
+    else if (technique == "forward-depth") o.method = render::technique::forward_depth;
+    else if (technique != "interlaced")
+      throw usage_error{"unknown technique '" + technique + "' (known: interlaced, peeling, forward, forward-depth)"};
     if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
     const auto s = load_scene(args[0]);
     if (!s) {

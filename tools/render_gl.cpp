@@ -13,7 +13,7 @@ namespace {
 
 // GL objects of one frame, released however the frame ends.
 struct resources {
-  std::vector<GLuint> buffers, vertex_arrays, programs;
+  std::vector<GLuint> buffers, vertex_arrays, programs, framebuffers;
   std::vector<gl::targets> targets;
   std::vector<gl::mesh> meshes;
   ~resources() {
@@ -22,6 +22,7 @@ struct resources {
     if (!buffers.empty()) glDeleteBuffers(GLsizei(buffers.size()), buffers.data());
     if (!vertex_arrays.empty()) glDeleteVertexArrays(GLsizei(vertex_arrays.size()), vertex_arrays.data());
     for (GLuint p : programs) glDeleteProgram(p);
+    if (!framebuffers.empty()) glDeleteFramebuffers(GLsizei(framebuffers.size()), framebuffers.data());
   }
   template <class T>
   GLuint buffer(const std::vector<T>& data, const std::string& name) {
@@ -41,13 +42,13 @@ struct resources {
   }
 };
 
-// Binds the per-light instance attribute (location 3) of vertex array `vao` to `indices`.
+// Binds the per-light instance attribute (location 3, buffer binding 3) of vertex array `vao` to `indices`.
 void bind_light_index(GLuint vao, GLuint indices) {
-  glVertexArrayVertexBuffer(vao, 1, indices, 0, sizeof(std::uint32_t));
-  glVertexArrayBindingDivisor(vao, 1, 1);
+  glVertexArrayVertexBuffer(vao, 3, indices, 0, sizeof(std::uint32_t));
+  glVertexArrayBindingDivisor(vao, 3, 1);
   glEnableVertexArrayAttrib(vao, 3);
   glVertexArrayAttribIFormat(vao, 3, 1, GL_UNSIGNED_INT, 0);
-  glVertexArrayAttribBinding(vao, 3, 1);
+  glVertexArrayAttribBinding(vao, 3, 3);
 }
 
 }  // namespace
@@ -59,26 +60,43 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
                            std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
   const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
 
-  // One G-buffer and light buffer (interlaced), or one a peeled layer.
+  // Deferred: one G-buffer and light buffer (interlaced), or one a peeled layer. Forward: one lit target.
+  const bool forward = is_forward(o.method), with_depth = o.method == technique::forward_depth;
   const bool peeling = o.method == technique::peeling;
-  const int layers = peeling ? 2 : 1;
+  const int layers = forward ? 0 : peeling ? 2 : 1;
   std::vector<GLuint> gbuffer_progs;
-  for (layer which : peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
-    auto p = r.program(gbuffer_pass(shader_dir, which), "gbuffer pass");
-    if (!p) return failure{p.error()};
-    gbuffer_progs.push_back(*p);
-  }
-  auto compose_prog = r.program(compose_pass(shader_dir, o.method), "compose pass");
-  if (!compose_prog) return failure{compose_prog.error()};
-  // Light programs by [shadowed][volume].
-  GLuint light_progs[2][2] = {};
-  for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed)
-    for (int vol = 0; vol < 2; ++vol) {
-      auto p = r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1),
-                         std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen"));
+  GLuint compose_prog = 0, light_progs[2][2] = {}, ambient_prog = 0, forward_light_progs[2] = {};
+  if (!forward) {
+    for (layer which : peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
+      auto p = r.program(gbuffer_pass(shader_dir, which), "gbuffer pass");
       if (!p) return failure{p.error()};
-      light_progs[shadowed][vol] = *p;
+      gbuffer_progs.push_back(*p);
     }
+    auto c = r.program(compose_pass(shader_dir, o.method), "compose pass");
+    if (!c) return failure{c.error()};
+    compose_prog = *c;
+    // Light programs by [shadowed][volume].
+    for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed)
+      for (int vol = 0; vol < 2; ++vol) {
+        auto p = r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1),
+                           std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen"));
+        if (!p) return failure{p.error()};
+        light_progs[shadowed][vol] = *p;
+      }
+  } else {
+    auto a = r.program(forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off), "forward ambient pass");
+    if (!a) return failure{a.error()};
+    ambient_prog = *a;
+    for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed) {
+      auto p = r.program(forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off),
+                         std::string("forward light pass") + (shadowed ? " shadowed" : ""));
+      if (!p) return failure{p.error()};
+      forward_light_progs[shadowed] = *p;
+    }
+    auto b = r.program(forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off), "forward blend pass");
+    if (!b) return failure{b.error()};
+    compose_prog = *b;
+  }
   GLuint shadow_prog = 0;
   if (any_shadows) {
     auto p = r.program(shadow_pass(shader_dir, mode), "shadow pass");
@@ -112,6 +130,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   for (std::size_t i = 0; i < light_ids.size(); ++i) light_ids[i] = std::uint32_t(i);
   const GLuint light_index = r.buffer(light_ids, "light indices");
   bind_light_index(fullscreen_vao, light_index);
+  bind_light_index(scene_vao, light_index);
   r.meshes.push_back(gl::make_mesh(sphere_mesh(1), "point light volume"));
   r.meshes.push_back(gl::make_mesh(cone_mesh(16), "spot light volume"));
   for (const gl::mesh& mesh : r.meshes) bind_light_index(mesh.vertex_array, light_index);
@@ -133,6 +152,20 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     if (!l) return failure{l.error()};
     r.targets.push_back(*l);
     light_buffers.push_back(*l);
+  }
+  // The forward target, and a framebuffer over its colour and depth alone for the light passes.
+  gl::targets lit;
+  GLuint lit_colour_only = 0;
+  if (forward) {
+    auto t = gl::make_targets(forward_targets(with_depth), o.width, o.height, "forward", true);
+    if (!t) return failure{t.error()};
+    lit = *t;
+    r.targets.push_back(lit);
+    glCreateFramebuffers(1, &lit_colour_only);
+    r.framebuffers.push_back(lit_colour_only);
+    glNamedFramebufferTexture(lit_colour_only, GL_COLOR_ATTACHMENT0, lit.textures[0], 0);
+    glNamedFramebufferTexture(lit_colour_only, GL_DEPTH_ATTACHMENT, lit.depth, 0);
+    gl::label(GL_FRAMEBUFFER, lit_colour_only, "forward light passes");
   }
   auto final_target = gl::make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
   if (!final_target) return failure{final_target.error()};
@@ -184,8 +217,27 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
     });
 
+  // Forward: the ambient pass fills colour, normal and depth; empty pixels are opaque black.
+  if (forward)
+    timed("ambient", [&] {
+      gl::debug_group g("forward ambient pass");
+      gl::bind(lit);
+      glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 0, clear_opaque_black);
+      glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 1, clear_zero);
+      if (with_depth) glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 2, clear_far);
+      glClearNamedFramebufferfv(lit.framebuffer, GL_DEPTH, 0, clear_far);
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+      glDisable(GL_CULL_FACE);
+      glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+      glUseProgram(ambient_prog);
+      glBindVertexArray(scene_vao);
+      glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
+    });
+
   // Lights, each shadowed spot light right after its own shadow pass (one shadow map serves them all),
-  // into each layer's light buffer.
+  // into each layer's light buffer, or (forward) over all geometry again into the lit colour.
   for (const gl::targets& lb : light_buffers) glClearNamedFramebufferfv(lb.framebuffer, GL_COLOR, 0, clear_zero);
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const light& l = s.lights[i];
@@ -211,6 +263,25 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
       if (mode == shadow_mode::transparent && shadow_picture.empty()) shadow_picture = gl::read_texels(shadow_map, 1);
     }
+    if (forward)
+      timed("light", [&] {
+        gl::debug_group g("forward light pass, light " + std::to_string(i));
+        glBindFramebuffer(GL_FRAMEBUFFER, lit_colour_only);
+        glViewport(0, 0, o.width, o.height);
+        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LEQUAL);
+        glDepthMask(GL_FALSE);
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        if (shadowed)
+          for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
+            glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+        glUseProgram(forward_light_progs[shadowed ? 1 : 0]);
+        glBindVertexArray(scene_vao);
+        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr, 1, GLuint(i));
+      });
     for (int k = 0; k < layers; ++k)
     timed("light", [&] {
       gl::debug_group g("light pass, light " + std::to_string(i) + (k ? ", second layer" : ""));
@@ -242,27 +313,38 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     });
   }
 
-  timed("compose", [&] {
-    gl::debug_group g("compose pass");
+  timed(forward ? "blend" : "compose", [&] {
+    gl::debug_group g(forward ? "forward blend pass" : "compose pass");
     gl::bind(*final_target);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
     glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-    for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
-    glBindTextureUnit(GLuint(light_binding), light_buffers[0].textures[0]);
+    if (forward)
+      for (std::size_t t = 0; t < lit.textures.size(); ++t) glBindTextureUnit(GLuint(t), lit.textures[t]);
+    else
+      for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+    if (!forward) glBindTextureUnit(GLuint(light_binding), light_buffers[0].textures[0]);
     if (peeling) {
       for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer2_binding + t), gbuffers[1].textures[std::size_t(t)]);
       glBindTextureUnit(GLuint(light2_binding), light_buffers[1].textures[0]);
     }
-    glUseProgram(*compose_prog);
+    glUseProgram(compose_prog);
     gl::draw_fullscreen(fullscreen_vao);
   });
   for (const auto& [pass, ms] : out.pass_ms) out.frame_ms += ms;
 
   const int w = o.width, h = o.height;
-  for (int t = 0; t < 4; ++t) out.gbuffer.push_back(gl::read_texels(gbuffers[0], t));
-  out.light_buffer = gl::read_texels(light_buffers[0], 0);
+  if (!forward) {
+    for (int t = 0; t < 4; ++t) out.gbuffer.push_back(gl::read_texels(gbuffers[0], t));
+    out.light_buffer = gl::read_texels(light_buffers[0], 0);
+  } else {
+    out.buffers.push_back({"colour", to_image(gl::read_texels(lit, 0), format::rgba8, w, h, view_as::rgb)});
+    out.buffers.push_back({"normals", to_image(gl::read_texels(lit, 1), format::rgb10a2, w, h, view_as::rgb)});
+    if (with_depth)
+      out.buffers.push_back({"depth", to_image(gl::read_texels(lit, 2), format::r32f, w, h, view_as::depth,
+                                               s.view.near_plane, s.view.far_plane)});
+  }
   out.final_image = to_image(gl::read_texels(*final_target, 0), format::rgba8, w, h, view_as::rgb);
   for (int k = 0; k < layers; ++k) {
     const std::string suffix = k ? "_2" : "";

@@ -127,9 +127,19 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
                            std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
   const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
 
-  // One G-buffer and light buffer (interlaced), or one a peeled layer.
+  // Deferred: one G-buffer and light buffer (interlaced), or one a peeled layer. Forward: one lit target,
+  // and a view of its colour and depth alone for the light passes (it owns nothing).
+  const bool forward = is_forward(o.method), with_depth = o.method == technique::forward_depth;
   const bool peeling = o.method == technique::peeling;
-  const int layers = peeling ? 2 : 1;
+  const int layers = forward ? 0 : peeling ? 2 : 1;
+  vk::targets lit, lit_colour_only;
+  if (forward) {
+    auto t = dev.make_targets(forward_targets(with_depth), o.width, o.height, "forward", true);
+    if (!t) return failure{t.error()};
+    lit = *t;
+    r.targets.push_back(lit);
+    lit_colour_only = vk::targets{{lit.colors[0]}, {lit.formats[0]}, lit.depth, lit.width, lit.height};
+  }
   std::vector<vk::targets> gbuffers, light_buffers;
   for (int k = 0; k < layers; ++k) {
     const std::string suffix = k ? " 2" : "";
@@ -164,9 +174,13 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   scene_state.attributes = {attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT), attribute(1, 1, VK_FORMAT_R32G32B32_SFLOAT),
                             attribute(2, 2, VK_FORMAT_R32_UINT)};
   scene_state.depth_attachment = scene_state.depth_test = scene_state.depth_write = true;
+  // The forward passes also read the light's index per instance, as the light volumes do.
+  vk::pipeline_state forward_state = scene_state;
+  forward_state.bindings.push_back({3, sizeof(std::uint32_t), VK_VERTEX_INPUT_RATE_INSTANCE});
+  forward_state.attributes.push_back(attribute(3, 3, VK_FORMAT_R32_UINT));
   std::vector<compiled> gbuffer_shaders;
   std::vector<vk::pipeline> gbuffer_pipes;
-  for (layer which : peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
+  for (layer which : forward ? std::vector<layer>{} : peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
     auto sh = compile(dev, gbuffer_pass(shader_dir, which), "gbuffer pass");
     if (!sh) return failure{sh.error()};
     auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, gbuffers[0].formats, "gbuffer pass", scene_state);
@@ -191,7 +205,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   // Light pipelines by [shadowed][volume]; volumes are drawn with their front faces (the camera is outside).
   compiled light_shaders[2][2]{};
   vk::pipeline light_pipes[2][2]{};
-  for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed)
+  for (int shadowed = 0; shadowed < (forward ? 0 : any_shadows ? 2 : 1); ++shadowed)
     for (int vol = 0; vol < 2; ++vol) {
       const std::string name = std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen");
       auto sh = compile(dev, light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1), name);
@@ -199,8 +213,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       light_shaders[shadowed][vol] = *sh;
       vk::pipeline_state st;
       st.additive = true;
-      st.bindings.push_back({1, sizeof(std::uint32_t), VK_VERTEX_INPUT_RATE_INSTANCE});
-      st.attributes.push_back(attribute(3, 1, VK_FORMAT_R32_UINT));
+      st.bindings.push_back({3, sizeof(std::uint32_t), VK_VERTEX_INPUT_RATE_INSTANCE});
+      st.attributes.push_back(attribute(3, 3, VK_FORMAT_R32_UINT));
       if (vol) {
         st.bindings.push_back({0, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX});
         st.attributes.push_back(attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT));
@@ -211,7 +225,35 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       light_pipes[shadowed][vol] = *p;
       r.pipelines.push_back(*p);
     }
-  auto compose_shaders = compile(dev, compose_pass(shader_dir, o.method), "compose pass");
+  // Forward pipelines: ambient, light by [shadowed], and the blend (in place of the compose pass).
+  compiled ambient_shaders{}, forward_light_shaders[2]{};
+  vk::pipeline ambient_pipe, forward_light_pipes[2]{};
+  if (forward) {
+    auto a = compile(dev, forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off), "forward ambient pass");
+    if (!a) return failure{a.error()};
+    ambient_shaders = *a;
+    auto ap = dev.make_graphics_pipeline(*a->vertex, *a->fragment, lit.formats, "forward ambient pass", forward_state);
+    if (!ap) return failure{ap.error()};
+    ambient_pipe = *ap;
+    r.pipelines.push_back(ambient_pipe);
+    for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed) {
+      const std::string name = std::string("forward light pass") + (shadowed ? " shadowed" : "");
+      auto sh = compile(dev, forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off), name);
+      if (!sh) return failure{sh.error()};
+      forward_light_shaders[shadowed] = *sh;
+      vk::pipeline_state st = forward_state;
+      st.depth_write = false;
+      st.depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
+      st.additive = true;
+      auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, lit_colour_only.formats, name, st);
+      if (!p) return failure{p.error()};
+      forward_light_pipes[shadowed] = *p;
+      r.pipelines.push_back(*p);
+    }
+  }
+  auto compose_shaders = forward ? compile(dev, forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off),
+                                           "forward blend pass")
+                                 : compile(dev, compose_pass(shader_dir, o.method), "compose pass");
   if (!compose_shaders) return failure{compose_shaders.error()};
   auto compose_pipe = dev.make_graphics_pipeline(*compose_shaders->vertex, *compose_shaders->fragment, final_target->formats,
                                                  "compose pass");
@@ -251,18 +293,22 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   pci.pPoolSizes = sizes;
   vkCreateDescriptorPool(ctx.device, &pci, ctx.allocator, &r.pool);
 
-  // What each layer's passes bind: its G-buffer at the G-buffer bindings; the compose pass sees both.
-  std::vector<bindings> per_layer(static_cast<std::size_t>(layers));
+  // What every pass binds (the frame's blocks and the shadow map); what each layer's passes bind on top
+  // (its G-buffer at the G-buffer bindings); the compose pass sees both layers, the blend the lit target.
+  bindings base;
+  base.buffers = {{frame_binding, frame_ubo}, {materials_binding, material_ssbo}, {lights_binding, light_ssbo}};
+  if (any_shadows)
+    for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) base.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
+  std::vector<bindings> per_layer(static_cast<std::size_t>(layers), base);
   for (int k = 0; k < layers; ++k) {
     bindings& b = per_layer[std::size_t(k)];
-    b.buffers = {{frame_binding, frame_ubo}, {materials_binding, material_ssbo}, {lights_binding, light_ssbo}};
     for (int t = 0; t < 4; ++t) b.images[gbuffer_binding + t] = gbuffers[std::size_t(k)].colors[std::size_t(t)].view;
     b.images[light_binding] = light_buffers[std::size_t(k)].colors[0].view;
     b.images[peel_depth_binding] = gbuffers[0].colors[3].view;
-    if (any_shadows)
-      for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) b.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
   }
-  bindings common = per_layer[0];
+  bindings common = forward ? base : per_layer[0];
+  if (forward)
+    for (std::size_t t = 0; t < lit.colors.size(); ++t) common.images[int(t)] = lit.colors[t].view;
   if (peeling) {
     for (int t = 0; t < 4; ++t) common.images[gbuffer2_binding + t] = gbuffers[1].colors[std::size_t(t)].view;
     common.images[light2_binding] = light_buffers[1].colors[0].view;
@@ -296,6 +342,21 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     });
   }
 
+  if (forward) {
+    auto set = make_set(r, ambient_pipe, {ambient_shaders.vertex, ambient_shaders.fragment}, base);
+    if (!set) return failure{set.error()};
+    timed("ambient", [&](VkCommandBuffer cmd) {
+      barrier(cmd);
+      std::vector<glm::vec4> clear{glm::vec4(0, 0, 0, 1), glm::vec4(0.0f)};
+      if (with_depth) clear.push_back(glm::vec4(1.0f));
+      dev.begin_rendering(cmd, lit, clear);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ambient_pipe.handle);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ambient_pipe.layout, 0, 1, &*set, 0, nullptr);
+      vkCmdBindVertexBuffers(cmd, 3, 1, &light_index, &zero);
+      draw_scene(cmd);
+      dev.end_rendering(cmd);
+    });
+  }
   dev.submit([&](VkCommandBuffer cmd) {
     barrier(cmd);
     for (const vk::targets& lb : light_buffers) {
@@ -328,6 +389,25 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         shadow_picture = *texels;
       }
     }
+    if (forward) {
+      const vk::pipeline& p = forward_light_pipes[shadowed ? 1 : 0];
+      const compiled& sh = forward_light_shaders[shadowed ? 1 : 0];
+      auto set = make_set(r, p, {sh.vertex, sh.fragment}, base);
+      if (!set) return failure{set.error()};
+      timed("light", [&](VkCommandBuffer cmd) {
+        barrier(cmd);
+        dev.begin_rendering(cmd, lit_colour_only, {});
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
+        const VkBuffer vb[] = {positions, normals, materials, light_index};
+        const VkDeviceSize offsets[] = {0, 0, 0, 0};
+        vkCmdBindVertexBuffers(cmd, 0, 4, vb, offsets);
+        vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, std::uint32_t(m.indices.size()), 1, 0, 0, std::uint32_t(i));
+        dev.end_rendering(cmd);
+      });
+      continue;
+    }
     const volume v = volume_of(s, l);
     const int vol = v == volume::fullscreen ? 0 : 1;
     const vk::pipeline& p = light_pipes[shadowed ? 1 : 0][vol];
@@ -340,7 +420,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       dev.begin_rendering(cmd, light_buffers[std::size_t(k)], {});
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
-      vkCmdBindVertexBuffers(cmd, 1, 1, &light_index, &zero);
+      vkCmdBindVertexBuffers(cmd, 3, 1, &light_index, &zero);
       if (v == volume::fullscreen) {
         vkCmdDraw(cmd, 3, 1, 0, std::uint32_t(i));
       } else {
@@ -356,7 +436,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
 
   auto compose_set = make_set(r, *compose_pipe, {compose_shaders->vertex, compose_shaders->fragment}, common);
   if (!compose_set) return failure{compose_set.error()};
-  timed("compose", [&](VkCommandBuffer cmd) {
+  timed(forward ? "blend" : "compose", [&](VkCommandBuffer cmd) {
     barrier(cmd);
     dev.begin_rendering(cmd, *final_target, {glm::vec4(0.0f)});
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, compose_pipe->handle);
@@ -372,18 +452,24 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!texels) return failure{texels.error()};
     return to_image(*texels, f, pw, ph, how, s.view.near_plane, s.view.far_plane);
   };
-  for (int t = 0; t < 4; ++t) {
-    auto texels = dev.read_texels(gbuffers[0], t);
-    if (!texels) return failure{texels.error()};
-    out.gbuffer.push_back(*texels);
+  if (!forward) {
+    for (int t = 0; t < 4; ++t) {
+      auto texels = dev.read_texels(gbuffers[0], t);
+      if (!texels) return failure{texels.error()};
+      out.gbuffer.push_back(*texels);
+    }
+    auto light_texels = dev.read_texels(light_buffers[0], 0);
+    if (!light_texels) return failure{light_texels.error()};
+    out.light_buffer = *light_texels;
   }
-  auto light_texels = dev.read_texels(light_buffers[0], 0);
-  if (!light_texels) return failure{light_texels.error()};
-  out.light_buffer = *light_texels;
   auto final_image = picture(*final_target, 0, format::rgba8, w, h, view_as::rgb);
   if (!final_image) return failure{final_image.error()};
   out.final_image = *final_image;
   std::vector<std::tuple<std::string, const vk::targets*, int, format, view_as>> wanted;
+  if (forward) {
+    wanted = {{"colour", &lit, 0, format::rgba8, view_as::rgb}, {"normals", &lit, 1, format::rgb10a2, view_as::rgb}};
+    if (with_depth) wanted.push_back({"depth", &lit, 2, format::r32f, view_as::depth});
+  }
   for (int k = 0; k < layers; ++k) {
     const std::string suffix = k ? "_2" : "";
     const vk::targets *gb = &gbuffers[std::size_t(k)], *lb = &light_buffers[std::size_t(k)];

@@ -387,7 +387,7 @@ result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shad
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = state.depth_test;
   depth.depthWriteEnable = state.depth_write;
-  depth.depthCompareOp = VK_COMPARE_OP_LESS;
+  depth.depthCompareOp = state.depth_compare;
   std::vector<VkPipelineColorBlendAttachmentState> blends(color_formats.size());
   for (auto& b : blends) {
     b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;

@@ -77,6 +77,7 @@ struct pipeline_state {
   std::vector<VkVertexInputAttributeDescription> attributes;
   bool depth_attachment = false;  // a D32_SFLOAT depth attachment is bound
   bool depth_test = false, depth_write = false;
+  VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
   bool additive = false;  // blend ONE + ONE into every target
   VkCullModeFlags cull = VK_CULL_MODE_NONE;  // counter-clockwise faces are front faces
 };

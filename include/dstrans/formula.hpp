@@ -296,6 +296,7 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_refraction, dst_refraction_offset),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_rejected),
       DSTRANS_FORMULA(dst_compose, dst_shade),
+      DSTRANS_FORMULA(dst_compose, dst_blend),
       DSTRANS_FORMULA(dst_compose, dst_compose),
   };
   return all;

@@ -12,6 +12,7 @@
 //   glm::vec2 offset = dstrans::shader::dst_refraction_offset(view_normal, strength);
 //   bool leak = dstrans::shader::dst_refraction_rejected(depth_t, depth_o);
 //   glm::vec3 colour = dstrans::shader::dst_compose(opaque, light_o, transparent, light_t, ambient);
+//   glm::vec3 same = dstrans::shader::dst_blend(lit_opaque, lit_transparent, alpha_t);   // colours already lit
 //
 // Choices: screen y grows downwards while view y grows upwards, so the offset's y is negated; equal depths
 // are not rejected (a surface does not leak into itself); strength 0 gives no offset, and the compose
@@ -32,7 +33,10 @@ DSTRANS_SHARED(dst_compose,
 DST_FN vec3 dst_shade(dst_surface s, dst_light_sample l, vec3 ambient) {
   return s.diffuse * (l.light + ambient) + vec3(s.spec_intensity * l.specular);
 }
+DST_FN vec3 dst_blend(vec3 opaque, vec3 transparent, float alpha_t) {
+  return opaque * (1.0f - alpha_t) + transparent * alpha_t;
+}
 DST_FN vec3 dst_compose(dst_surface o, dst_light_sample light_o, dst_surface t, dst_light_sample light_t, vec3 ambient) {
-  return dst_shade(o, light_o, ambient) * (1.0f - t.alpha) + dst_shade(t, light_t, ambient) * t.alpha;
+  return dst_blend(dst_shade(o, light_o, ambient), dst_shade(t, light_t, ambient), t.alpha);
 }
 )

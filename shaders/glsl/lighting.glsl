@@ -1,0 +1,39 @@
+// The light one light gives a point: attenuation, spot falloff, the shadow map (plain, or transparent by
+// Eq. 3.1-3.2) and Phong (Eq. 2.1). Shared by the deferred light pass and the forward light passes.
+
+#if defined(DST_OPAQUE_SHADOWS) || defined(DST_TRANSPARENT_SHADOWS)
+vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
+  vec4 h = l.shadow_view_proj * vec4(world, 1.0f);
+  if (!(h.w > 0.0f)) return light;
+  vec3 ndc = h.xyz / h.w;
+  ivec2 size = frame.size.zw;
+  ivec2 texel = ivec2(floor(vec2(ndc.x * 0.5f + 0.5f, 0.5f - ndc.y * 0.5f) * vec2(size)));
+  if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, size))) return light;
+#ifdef DST_TRANSPARENT_SHADOWS
+  ivec2 other = dst_interlace_partner(texel, size);
+  dst_surface a = dst_shadow_read(texel), b = dst_shadow_read(other);
+  return dst_transparent_shadow(light, ndc.z, frame.params.y, a.depth, vec4(a.diffuse, a.alpha), b.depth,
+                                vec4(b.diffuse, b.alpha));
+#else
+  return dst_opaque_shadow(light, ndc.z, frame.params.y, dst_shadow_read(texel).depth);
+#endif
+}
+#endif
+
+// Light `l` at world point `p` with unit normal `n` and Phong exponent `spec_power`, seen from the camera.
+dst_light_sample dst_light_at_point(dst_light_data l, vec3 p, vec3 n, float spec_power) {
+  vec3 light = l.colour_cos_outer.xyz;
+  vec3 to_light = -l.direction_kind.xyz;
+  float kind = l.direction_kind.w;
+  if (kind > 0.5f) {
+    vec3 d = l.position_range.xyz - p;
+    float distance = length(d);
+    to_light = d / max(distance, 1e-6f);
+    light *= dst_attenuation(distance, l.position_range.w);
+    if (kind > 1.5f) light *= dst_spot_falloff(dot(-to_light, l.direction_kind.xyz), l.colour_cos_outer.w, l.cos_inner.x);
+  }
+#if defined(DST_OPAQUE_SHADOWS) || defined(DST_TRANSPARENT_SHADOWS)
+  if (l.cos_inner.y > 0.5f) light = dst_shadowed(light, p, l);
+#endif
+  return dst_phong(n, to_light, normalize(frame.camera_position.xyz - p), spec_power, light);
+}
