@@ -28,6 +28,7 @@ struct options {
   float shadow_bias = 0.0005f;
   int shadow_size = 512;
   shadow_mode shadows = shadow_mode::transparent;  // for spot lights that cast them
+  int frames = 1;  // frames rendered with the same resources; times are their medians
 };
 
 struct frame_block {

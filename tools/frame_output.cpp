@@ -32,6 +32,35 @@ image to_image(const std::vector<texel>& texels, format f, int width, int height
   return out;
 }
 
+namespace {
+// The q-quantile (0 to 1) of `v`, interpolated between neighbours.
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const double at = q * double(v.size() - 1);
+  const std::size_t lo = std::size_t(at), hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (v[hi] - v[lo]) * (at - double(lo));
+}
+}  // namespace
+
+void summarize(const std::vector<std::map<std::string, double>>& frames, frame& out) {
+  out.frames = int(frames.size());
+  out.pass_ms.clear();
+  if (frames.empty()) return;
+  std::vector<double> totals;
+  for (const auto& f : frames) {
+    double total = 0.0;
+    for (const auto& [pass, ms] : f) total += ms;
+    totals.push_back(total);
+  }
+  for (const auto& [pass, ms] : frames.front()) {
+    std::vector<double> v;
+    for (const auto& f : frames) v.push_back(f.at(pass));
+    out.pass_ms[pass] = quantile(v, 0.5);
+  }
+  out.frame_ms = quantile(totals, 0.5);
+  out.frame_ms_spread = quantile(totals, 0.75) - quantile(totals, 0.25);
+}
+
 result<bool> write_frame(const frame& f, const std::string& dir, const std::string& technique, const std::string& backend) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -46,7 +75,8 @@ result<bool> write_frame(const frame& f, const std::string& dir, const std::stri
   for (const auto& [name, img] : f.buffers)
     if (auto ok = png(name, img); !ok) return ok;
   nlohmann::ordered_json j{{"technique", technique}, {"backend", backend}, {"width", f.final_image.width},
-                           {"height", f.final_image.height}, {"pass_ms", f.pass_ms}, {"frame_ms", f.frame_ms}};
+                           {"height", f.final_image.height}, {"pass_ms", f.pass_ms}, {"frame_ms", f.frame_ms},
+                           {"frame_ms_spread", f.frame_ms_spread}, {"frames", f.frames}};
   std::ofstream out(dir + "/frame.json");
   out << j.dump(2) << "\n";
   if (!out) return failure{dir + "/frame.json: cannot write: " + std::strerror(errno)};

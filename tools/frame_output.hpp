@@ -25,9 +25,14 @@ struct frame {
   std::vector<std::vector<texel>> gbuffer;
   std::vector<texel> light_buffer;
   std::vector<std::pair<std::string, image>> buffers;  // in the order the passes make them
-  std::map<std::string, double> pass_ms;
-  double frame_ms = 0.0;
+  std::map<std::string, double> pass_ms;  // the median over the frames rendered, per pass
+  double frame_ms = 0.0;                   // the median frame (sum of its passes)
+  double frame_ms_spread = 0.0;            // the interquartile range of the frame times
+  int frames = 0;
 };
+
+// Fills `out`'s timings from the pass times of each frame rendered.
+void summarize(const std::vector<std::map<std::string, double>>& frames, frame& out);
 
 // What each channel of a buffer shows in its picture.
 enum class view_as { rgb, alpha, depth };

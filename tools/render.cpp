@@ -16,6 +16,7 @@ namespace {
 const char* const usage =
     "usage: dstrans render <scene.json> --backend gl|vk --out DIR [--width W --height H] [--technique NAME]\n"
     "       [--refraction PIXELS] [--shadows off|opaque|transparent] [--shadow-bias DEPTH] [--shadow-size N]\n"
+    "       [--frames N]   render N frames with the same resources; pass times are their medians\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
@@ -35,6 +36,7 @@ int render(std::vector<std::string> args) {
     o.height = to_int(take_option(args, "--height", "180"), 1, 8192, "--height");
     o.refraction = float(to_int(take_option(args, "--refraction", "8"), 0, 256, "--refraction"));
     o.shadow_size = to_int(take_option(args, "--shadow-size", "1024"), 16, 8192, "--shadow-size");
+    o.frames = to_int(take_option(args, "--frames", "1"), 1, 1000, "--frames");
     const std::string bias = take_option(args, "--shadow-bias", "0.0005");
     try {
       std::size_t used = 0;

@@ -1,9 +1,8 @@
 // Implements render_gl.hpp with the engine-facing GL backend.
 #include "render_gl.hpp"
 
-#include <memory>
-
 #include <dstrans_gl.hpp>
+#include <memory>
 
 #include "passes.hpp"
 
@@ -28,8 +27,8 @@ struct resources {
   GLuint buffer(const std::vector<T>& data, const std::string& name) {
     GLuint b = 0;
     glCreateBuffers(1, &b);
-    glNamedBufferStorage(b, GLsizeiptr(std::max<std::size_t>(data.size(), 1) * sizeof(T)), data.empty() ? nullptr : data.data(),
-                         GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(b, GLsizeiptr(std::max<std::size_t>(data.size(), 1) * sizeof(T)),
+                         data.empty() ? nullptr : data.data(), GL_DYNAMIC_STORAGE_BIT);
     gl::label(GL_BUFFER, b, name);
     buffers.push_back(b);
     return b;
@@ -57,7 +56,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   resources r;
   gl::state_guard keep;
   const bool any_shadows = o.shadows != shadow_mode::off &&
-                           std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
+                           std::any_of(s.lights.begin(), s.lights.end(),
+                                       [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
   const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
 
   // Deferred: one G-buffer and light buffer (interlaced), or one a peeled layer. Forward: one lit target.
@@ -67,7 +67,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   std::vector<GLuint> gbuffer_progs;
   GLuint compose_prog = 0, light_progs[2][2] = {}, ambient_prog = 0, forward_light_progs[2] = {};
   if (!forward) {
-    for (layer which : peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
+    for (layer which :
+         peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
       auto p = r.program(gbuffer_pass(shader_dir, which), "gbuffer pass");
       if (!p) return failure{p.error()};
       gbuffer_progs.push_back(*p);
@@ -78,13 +79,15 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     // Light programs by [shadowed][volume].
     for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed)
       for (int vol = 0; vol < 2; ++vol) {
-        auto p = r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1),
-                           std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen"));
+        auto p =
+            r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1),
+                      std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen"));
         if (!p) return failure{p.error()};
         light_progs[shadowed][vol] = *p;
       }
   } else {
-    auto a = r.program(forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off), "forward ambient pass");
+    auto a = r.program(forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off),
+                       "forward ambient pass");
     if (!a) return failure{a.error()};
     ambient_prog = *a;
     for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed) {
@@ -93,7 +96,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       if (!p) return failure{p.error()};
       forward_light_progs[shadowed] = *p;
     }
-    auto b = r.program(forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off), "forward blend pass");
+    auto b =
+        r.program(forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off), "forward blend pass");
     if (!b) return failure{b.error()};
     compose_prog = *b;
   }
@@ -167,7 +171,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     glNamedFramebufferTexture(lit_colour_only, GL_DEPTH_ATTACHMENT, lit.depth, 0);
     gl::label(GL_FRAMEBUFFER, lit_colour_only, "forward light passes");
   }
-  auto final_target = gl::make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
+  auto final_target =
+      gl::make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
   if (!final_target) return failure{final_target.error()};
   r.targets.push_back(*final_target);
   gl::targets shadow_map;
@@ -183,156 +188,166 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   frame out;
   std::vector<texel> shadow_picture;
   gl::timer timer;
+  std::map<std::string, double> current;  // this frame's pass times
+  std::vector<std::map<std::string, double>> frames;
   auto timed = [&](const std::string& pass, auto&& draw) {
     timer.begin();
     draw();
     timer.end();
-    out.pass_ms[pass] += timer.milliseconds();
+    current[pass] += timer.milliseconds();
   };
   const float clear_far[4] = {1.0f, 1.0f, 1.0f, 1.0f}, clear_opaque_black[4] = {0.0f, 0.0f, 0.0f, 1.0f},
               clear_zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  glDisable(GL_BLEND);
-  glDisable(GL_SCISSOR_TEST);
-  glFrontFace(GL_CCW);
+  for (int n = 0; n < std::max(o.frames, 1); ++n) {
+    current.clear();
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glFrontFace(GL_CCW);
 
-  // G-buffers: empty pixels are opaque black at the far plane. The second peeled layer reads the first's depth.
-  for (int k = 0; k < layers; ++k)
-    timed("gbuffer", [&] {
-      gl::debug_group g(k ? "gbuffer pass, second layer" : "gbuffer pass");
-      const gl::targets& gb = gbuffers[std::size_t(k)];
-      gl::bind(gb);
-      glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 0, clear_opaque_black);
-      glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 1, clear_zero);
-      glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 2, clear_zero);
-      glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 3, clear_far);
-      glClearNamedFramebufferfv(gb.framebuffer, GL_DEPTH, 0, clear_far);
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_TRUE);
-      glDisable(GL_CULL_FACE);
-      glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-      if (k) glBindTextureUnit(GLuint(peel_depth_binding), gbuffers[0].textures[3]);
-      glUseProgram(gbuffer_progs[std::size_t(k)]);
-      glBindVertexArray(scene_vao);
-      glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
-    });
-
-  // Forward: the ambient pass fills colour, normal and depth; empty pixels are opaque black.
-  if (forward)
-    timed("ambient", [&] {
-      gl::debug_group g("forward ambient pass");
-      gl::bind(lit);
-      glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 0, clear_opaque_black);
-      glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 1, clear_zero);
-      if (with_depth) glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 2, clear_far);
-      glClearNamedFramebufferfv(lit.framebuffer, GL_DEPTH, 0, clear_far);
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_TRUE);
-      glDisable(GL_CULL_FACE);
-      glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-      glUseProgram(ambient_prog);
-      glBindVertexArray(scene_vao);
-      glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
-    });
-
-  // Lights, each shadowed spot light right after its own shadow pass (one shadow map serves them all),
-  // into each layer's light buffer, or (forward) over all geometry again into the lit colour.
-  for (const gl::targets& lb : light_buffers) glClearNamedFramebufferfv(lb.framebuffer, GL_COLOR, 0, clear_zero);
-  for (std::size_t i = 0; i < s.lights.size(); ++i) {
-    const light& l = s.lights[i];
-    const bool shadowed = any_shadows && l.shadows && l.kind == light_kind::spot;
-    if (shadowed) {
-      timed("shadow", [&] {
-        gl::debug_group g("shadow pass, light " + std::to_string(i));
-        gl::bind(shadow_map);
-        glClearNamedFramebufferfv(shadow_map.framebuffer, GL_COLOR, 0, clear_far);
-        if (mode == shadow_mode::transparent) glClearNamedFramebufferfv(shadow_map.framebuffer, GL_COLOR, 1, clear_far);
-        glClearNamedFramebufferfv(shadow_map.framebuffer, GL_DEPTH, 0, clear_far);
-        glDisable(GL_BLEND);
+    // G-buffers: empty pixels are opaque black at the far plane. The second peeled layer reads the first's depth.
+    for (int k = 0; k < layers; ++k)
+      timed("gbuffer", [&] {
+        gl::debug_group g(k ? "gbuffer pass, second layer" : "gbuffer pass");
+        const gl::targets& gb = gbuffers[std::size_t(k)];
+        gl::bind(gb);
+        glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 0, clear_opaque_black);
+        glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 1, clear_zero);
+        glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 2, clear_zero);
+        glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 3, clear_far);
+        glClearNamedFramebufferfv(gb.framebuffer, GL_DEPTH, 0, clear_far);
         glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
         glDisable(GL_CULL_FACE);
-        const frame_block lf = light_frame(s, l, o);
-        glNamedBufferSubData(shadow_ubo, 0, sizeof lf, &lf);
-        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, shadow_ubo);
-        glUseProgram(shadow_prog);
+        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+        if (k) glBindTextureUnit(GLuint(peel_depth_binding), gbuffers[0].textures[3]);
+        glUseProgram(gbuffer_progs[std::size_t(k)]);
         glBindVertexArray(scene_vao);
         glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
       });
-      // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
-      if (mode == shadow_mode::transparent && shadow_picture.empty()) shadow_picture = gl::read_texels(shadow_map, 1);
-    }
-    if (forward)
-      timed("light", [&] {
-        gl::debug_group g("forward light pass, light " + std::to_string(i));
-        glBindFramebuffer(GL_FRAMEBUFFER, lit_colour_only);
-        glViewport(0, 0, o.width, o.height);
-        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LEQUAL);
-        glDepthMask(GL_FALSE);
-        glDisable(GL_CULL_FACE);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
-        if (shadowed)
-          for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
-            glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
-        glUseProgram(forward_light_progs[shadowed ? 1 : 0]);
-        glBindVertexArray(scene_vao);
-        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr, 1, GLuint(i));
-      });
-    for (int k = 0; k < layers; ++k)
-    timed("light", [&] {
-      gl::debug_group g("light pass, light " + std::to_string(i) + (k ? ", second layer" : ""));
-      gl::bind(light_buffers[std::size_t(k)]);
-      glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-      glDisable(GL_DEPTH_TEST);
-      glDepthMask(GL_FALSE);
-      glEnable(GL_BLEND);
-      glBlendFunc(GL_ONE, GL_ONE);
-      for (int t = 0; t < 4; ++t)
-        glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[std::size_t(k)].textures[std::size_t(t)]);
-      if (shadowed)
-        for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
-          glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
-      const volume v = volume_of(s, l);
-      glUseProgram(light_progs[shadowed ? 1 : 0][v == volume::fullscreen ? 0 : 1]);
-      if (v == volume::fullscreen) {
-        glDisable(GL_CULL_FACE);
-        glBindVertexArray(fullscreen_vao);
-        glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3, 1, GLuint(i));
-      } else {
-        // Front faces only: each pixel the volume covers is lit once (the camera is outside it).
-        glEnable(GL_CULL_FACE);
-        glCullFace(GL_BACK);
-        const gl::mesh& mesh = r.meshes[v == volume::sphere ? 0 : 1];
-        glBindVertexArray(mesh.vertex_array);
-        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, 1, GLuint(i));
-      }
-    });
-  }
 
-  timed(forward ? "blend" : "compose", [&] {
-    gl::debug_group g(forward ? "forward blend pass" : "compose pass");
-    gl::bind(*final_target);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_DEPTH_TEST);
-    glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+    // Forward: the ambient pass fills colour, normal and depth; empty pixels are opaque black.
     if (forward)
-      for (std::size_t t = 0; t < lit.textures.size(); ++t) glBindTextureUnit(GLuint(t), lit.textures[t]);
-    else
-      for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
-    if (!forward) glBindTextureUnit(GLuint(light_binding), light_buffers[0].textures[0]);
-    if (peeling) {
-      for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer2_binding + t), gbuffers[1].textures[std::size_t(t)]);
-      glBindTextureUnit(GLuint(light2_binding), light_buffers[1].textures[0]);
+      timed("ambient", [&] {
+        gl::debug_group g("forward ambient pass");
+        gl::bind(lit);
+        glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 0, clear_opaque_black);
+        glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 1, clear_zero);
+        if (with_depth) glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 2, clear_far);
+        glClearNamedFramebufferfv(lit.framebuffer, GL_DEPTH, 0, clear_far);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_CULL_FACE);
+        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+        glUseProgram(ambient_prog);
+        glBindVertexArray(scene_vao);
+        glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
+      });
+
+    // Lights, each shadowed spot light right after its own shadow pass (one shadow map serves them all),
+    // into each layer's light buffer, or (forward) over all geometry again into the lit colour.
+    for (const gl::targets& lb : light_buffers) glClearNamedFramebufferfv(lb.framebuffer, GL_COLOR, 0, clear_zero);
+    for (std::size_t i = 0; i < s.lights.size(); ++i) {
+      const light& l = s.lights[i];
+      const bool shadowed = any_shadows && l.shadows && l.kind == light_kind::spot;
+      if (shadowed) {
+        timed("shadow", [&] {
+          gl::debug_group g("shadow pass, light " + std::to_string(i));
+          gl::bind(shadow_map);
+          glClearNamedFramebufferfv(shadow_map.framebuffer, GL_COLOR, 0, clear_far);
+          if (mode == shadow_mode::transparent)
+            glClearNamedFramebufferfv(shadow_map.framebuffer, GL_COLOR, 1, clear_far);
+          glClearNamedFramebufferfv(shadow_map.framebuffer, GL_DEPTH, 0, clear_far);
+          glDisable(GL_BLEND);
+          glEnable(GL_DEPTH_TEST);
+          glDepthMask(GL_TRUE);
+          glDisable(GL_CULL_FACE);
+          const frame_block lf = light_frame(s, l, o);
+          glNamedBufferSubData(shadow_ubo, 0, sizeof lf, &lf);
+          glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, shadow_ubo);
+          glUseProgram(shadow_prog);
+          glBindVertexArray(scene_vao);
+          glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
+        });
+        // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
+        if (mode == shadow_mode::transparent && shadow_picture.empty()) shadow_picture = gl::read_texels(shadow_map, 1);
+      }
+      if (forward)
+        timed("light", [&] {
+          gl::debug_group g("forward light pass, light " + std::to_string(i));
+          glBindFramebuffer(GL_FRAMEBUFFER, lit_colour_only);
+          glViewport(0, 0, o.width, o.height);
+          glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+          glEnable(GL_DEPTH_TEST);
+          glDepthFunc(GL_LEQUAL);
+          glDepthMask(GL_FALSE);
+          glDisable(GL_CULL_FACE);
+          glEnable(GL_BLEND);
+          glBlendFunc(GL_ONE, GL_ONE);
+          if (shadowed)
+            for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
+              glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+          glUseProgram(forward_light_progs[shadowed ? 1 : 0]);
+          glBindVertexArray(scene_vao);
+          glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr, 1,
+                                              GLuint(i));
+        });
+      for (int k = 0; k < layers; ++k)
+        timed("light", [&] {
+          gl::debug_group g("light pass, light " + std::to_string(i) + (k ? ", second layer" : ""));
+          gl::bind(light_buffers[std::size_t(k)]);
+          glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+          glDisable(GL_DEPTH_TEST);
+          glDepthMask(GL_FALSE);
+          glEnable(GL_BLEND);
+          glBlendFunc(GL_ONE, GL_ONE);
+          for (int t = 0; t < 4; ++t)
+            glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[std::size_t(k)].textures[std::size_t(t)]);
+          if (shadowed)
+            for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
+              glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+          const volume v = volume_of(s, l);
+          glUseProgram(light_progs[shadowed ? 1 : 0][v == volume::fullscreen ? 0 : 1]);
+          if (v == volume::fullscreen) {
+            glDisable(GL_CULL_FACE);
+            glBindVertexArray(fullscreen_vao);
+            glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3, 1, GLuint(i));
+          } else {
+            // Front faces only: each pixel the volume covers is lit once (the camera is outside it).
+            glEnable(GL_CULL_FACE);
+            glCullFace(GL_BACK);
+            const gl::mesh& mesh = r.meshes[v == volume::sphere ? 0 : 1];
+            glBindVertexArray(mesh.vertex_array);
+            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, 1, GLuint(i));
+          }
+        });
     }
-    glUseProgram(compose_prog);
-    gl::draw_fullscreen(fullscreen_vao);
-  });
-  for (const auto& [pass, ms] : out.pass_ms) out.frame_ms += ms;
+
+    timed(forward ? "blend" : "compose", [&] {
+      gl::debug_group g(forward ? "forward blend pass" : "compose pass");
+      gl::bind(*final_target);
+      glDisable(GL_BLEND);
+      glDisable(GL_CULL_FACE);
+      glDisable(GL_DEPTH_TEST);
+      glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+      if (forward)
+        for (std::size_t t = 0; t < lit.textures.size(); ++t) glBindTextureUnit(GLuint(t), lit.textures[t]);
+      else
+        for (int t = 0; t < 4; ++t)
+          glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+      if (!forward) glBindTextureUnit(GLuint(light_binding), light_buffers[0].textures[0]);
+      if (peeling) {
+        for (int t = 0; t < 4; ++t)
+          glBindTextureUnit(GLuint(gbuffer2_binding + t), gbuffers[1].textures[std::size_t(t)]);
+        glBindTextureUnit(GLuint(light2_binding), light_buffers[1].textures[0]);
+      }
+      glUseProgram(compose_prog);
+      gl::draw_fullscreen(fullscreen_vao);
+    });
+    frames.push_back(current);
+  }
+  summarize(frames, out);
 
   const int w = o.width, h = o.height;
   if (!forward) {
@@ -357,7 +372,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     out.buffers.push_back({"specular" + suffix, to_image(gl::read_texels(lb, 0), format::rgba8, w, h, view_as::alpha)});
   }
   if (!shadow_picture.empty())
-    out.buffers.push_back({"shadow_colour", to_image(shadow_picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
+    out.buffers.push_back(
+        {"shadow_colour", to_image(shadow_picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
   return out;
 }
 

@@ -46,13 +46,15 @@ struct bindings {
 };
 
 // A descriptor set for `p` whose shaders are `stages`, filled from `b` by what the shaders declare.
-result<VkDescriptorSet> make_set(resources& r, const vk::pipeline& p, const std::vector<const vk::shader*>& stages, const bindings& b) {
+result<VkDescriptorSet> make_set(resources& r, const vk::pipeline& p, const std::vector<const vk::shader*>& stages,
+                                 const bindings& b) {
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   ai.descriptorPool = r.pool;
   ai.descriptorSetCount = 1;
   ai.pSetLayouts = &p.set_layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  if (vkAllocateDescriptorSets(r.dev.ctx().device, &ai, &set) != VK_SUCCESS) return failure{"descriptor pool exhausted"};
+  if (vkAllocateDescriptorSets(r.dev.ctx().device, &ai, &set) != VK_SUCCESS)
+    return failure{"descriptor pool exhausted"};
   std::vector<VkWriteDescriptorSet> writes;
   std::vector<VkDescriptorBufferInfo> buffer_infos;
   std::vector<VkDescriptorImageInfo> image_infos;
@@ -97,7 +99,8 @@ void barrier(VkCommandBuffer cmd) {
   VkMemoryBarrier m{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   m.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
   m.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &m, 0, nullptr, 0, nullptr);
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &m, 0,
+                       nullptr, 0, nullptr);
 }
 
 struct compiled {
@@ -124,7 +127,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   resources r(dev);
   const vk::context& ctx = dev.ctx();
   const bool any_shadows = o.shadows != shadow_mode::off &&
-                           std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
+                           std::any_of(s.lights.begin(), s.lights.end(),
+                                       [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
   const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
 
   // Deferred: one G-buffer and light buffer (interlaced), or one a peeled layer. Forward: one lit target,
@@ -152,7 +156,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     r.targets.push_back(*l);
     light_buffers.push_back(*l);
   }
-  auto final_target = dev.make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
+  auto final_target =
+      dev.make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
   if (!final_target) return failure{final_target.error()};
   r.targets.push_back(*final_target);
   vk::targets shadow_map;
@@ -180,7 +185,9 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   forward_state.attributes.push_back(attribute(3, 3, VK_FORMAT_R32_UINT));
   std::vector<compiled> gbuffer_shaders;
   std::vector<vk::pipeline> gbuffer_pipes;
-  for (layer which : forward ? std::vector<layer>{} : peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
+  for (layer which : forward   ? std::vector<layer>{}
+                     : peeling ? std::vector<layer>{layer::first, layer::second}
+                               : std::vector<layer>{layer::interlaced}) {
     auto sh = compile(dev, gbuffer_pass(shader_dir, which), "gbuffer pass");
     if (!sh) return failure{sh.error()};
     auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, gbuffers[0].formats, "gbuffer pass", scene_state);
@@ -195,8 +202,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   if (any_shadows) {
     shadow_shaders = compile(dev, shadow_pass(shader_dir, mode), "shadow pass");
     if (!shadow_shaders) return failure{shadow_shaders.error()};
-    auto p = dev.make_graphics_pipeline(*shadow_shaders->vertex, *shadow_shaders->fragment, shadow_map.formats, "shadow pass",
-                                        scene_state);
+    auto p = dev.make_graphics_pipeline(*shadow_shaders->vertex, *shadow_shaders->fragment, shadow_map.formats,
+                                        "shadow pass", scene_state);
     if (!p) return failure{p.error()};
     shadow_pipe = *p;
     r.pipelines.push_back(shadow_pipe);
@@ -207,7 +214,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   vk::pipeline light_pipes[2][2]{};
   for (int shadowed = 0; shadowed < (forward ? 0 : any_shadows ? 2 : 1); ++shadowed)
     for (int vol = 0; vol < 2; ++vol) {
-      const std::string name = std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen");
+      const std::string name =
+          std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen");
       auto sh = compile(dev, light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1), name);
       if (!sh) return failure{sh.error()};
       light_shaders[shadowed][vol] = *sh;
@@ -229,7 +237,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   compiled ambient_shaders{}, forward_light_shaders[2]{};
   vk::pipeline ambient_pipe, forward_light_pipes[2]{};
   if (forward) {
-    auto a = compile(dev, forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off), "forward ambient pass");
+    auto a = compile(dev, forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off),
+                     "forward ambient pass");
     if (!a) return failure{a.error()};
     ambient_shaders = *a;
     auto ap = dev.make_graphics_pipeline(*a->vertex, *a->fragment, lit.formats, "forward ambient pass", forward_state);
@@ -238,7 +247,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     r.pipelines.push_back(ambient_pipe);
     for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed) {
       const std::string name = std::string("forward light pass") + (shadowed ? " shadowed" : "");
-      auto sh = compile(dev, forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off), name);
+      auto sh = compile(
+          dev, forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off), name);
       if (!sh) return failure{sh.error()};
       forward_light_shaders[shadowed] = *sh;
       vk::pipeline_state st = forward_state;
@@ -251,12 +261,13 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       r.pipelines.push_back(*p);
     }
   }
-  auto compose_shaders = forward ? compile(dev, forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off),
-                                           "forward blend pass")
-                                 : compile(dev, compose_pass(shader_dir, o.method), "compose pass");
+  auto compose_shaders =
+      forward ? compile(dev, forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off),
+                        "forward blend pass")
+              : compile(dev, compose_pass(shader_dir, o.method), "compose pass");
   if (!compose_shaders) return failure{compose_shaders.error()};
-  auto compose_pipe = dev.make_graphics_pipeline(*compose_shaders->vertex, *compose_shaders->fragment, final_target->formats,
-                                                 "compose pass");
+  auto compose_pipe = dev.make_graphics_pipeline(*compose_shaders->vertex, *compose_shaders->fragment,
+                                                 final_target->formats, "compose pass");
   if (!compose_pipe) return failure{compose_pipe.error()};
   r.pipelines.push_back(*compose_pipe);
 
@@ -266,19 +277,24 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   for (std::size_t i = 0; i < light_ids.size(); ++i) light_ids[i] = std::uint32_t(i);
   const mesh_data sphere = sphere_mesh(1), cone = cone_mesh(16);
   std::vector<result<VkBuffer>> made{
-      r.buffer(m.positions, vertex_use, "scene positions"),        r.buffer(m.normals, vertex_use, "scene normals"),
-      r.buffer(m.materials, vertex_use, "scene materials"),        r.buffer(m.indices, index_use, "scene indices"),
-      r.buffer(light_ids, vertex_use, "light indices"),            r.buffer(sphere.positions, vertex_use, "point light volume"),
-      r.buffer(sphere.indices, index_use, "point light volume"),   r.buffer(cone.positions, vertex_use, "spot light volume"),
+      r.buffer(m.positions, vertex_use, "scene positions"),
+      r.buffer(m.normals, vertex_use, "scene normals"),
+      r.buffer(m.materials, vertex_use, "scene materials"),
+      r.buffer(m.indices, index_use, "scene indices"),
+      r.buffer(light_ids, vertex_use, "light indices"),
+      r.buffer(sphere.positions, vertex_use, "point light volume"),
+      r.buffer(sphere.indices, index_use, "point light volume"),
+      r.buffer(cone.positions, vertex_use, "spot light volume"),
       r.buffer(cone.indices, index_use, "spot light volume"),
       r.buffer(std::vector<frame_block>{camera_frame(s, o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "camera frame"),
       r.buffer(material_blocks(s), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials"),
       r.buffer(light_blocks(s, o), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights")};
   for (const auto& b : made)
     if (!b) return failure{b.error()};
-  const VkBuffer positions = *made[0], normals = *made[1], materials = *made[2], indices = *made[3], light_index = *made[4],
-                 sphere_vertices = *made[5], sphere_indices = *made[6], cone_vertices = *made[7], cone_indices = *made[8],
-                 frame_ubo = *made[9], material_ssbo = *made[10], light_ssbo = *made[11];
+  const VkBuffer positions = *made[0], normals = *made[1], materials = *made[2], indices = *made[3],
+                 light_index = *made[4], sphere_vertices = *made[5], sphere_indices = *made[6],
+                 cone_vertices = *made[7], cone_indices = *made[8], frame_ubo = *made[9], material_ssbo = *made[10],
+                 light_ssbo = *made[11];
 
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
@@ -298,7 +314,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   bindings base;
   base.buffers = {{frame_binding, frame_ubo}, {materials_binding, material_ssbo}, {lights_binding, light_ssbo}};
   if (any_shadows)
-    for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) base.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
+    for (std::size_t t = 0; t < shadow_map.colors.size(); ++t)
+      base.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
   std::vector<bindings> per_layer(static_cast<std::size_t>(layers), base);
   for (int k = 0; k < layers; ++k) {
     bindings& b = per_layer[std::size_t(k)];
@@ -316,9 +333,19 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
 
   frame out;
   std::vector<texel> shadow_picture;
-  auto timed = [&](const std::string& pass, auto&& record) { out.pass_ms[pass] += dev.submit(record); };
+  std::map<std::string, double> current;  // this frame's pass times
+  std::vector<std::map<std::string, double>> frames;
+  auto timed = [&](const std::string& pass, auto&& record) { current[pass] += dev.submit(record); };
+  // Each shadowed light's view, made once for all frames.
+  std::vector<VkBuffer> light_ubos(s.lights.size(), VK_NULL_HANDLE);
+  for (std::size_t i = 0; i < s.lights.size(); ++i)
+    if (any_shadows && s.lights[i].shadows && s.lights[i].kind == light_kind::spot) {
+      auto ubo = r.buffer(std::vector<frame_block>{light_frame(s, s.lights[i], o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                          "light frame");
+      if (!ubo) return failure{ubo.error()};
+      light_ubos[i] = *ubo;
+    }
   const VkDeviceSize zero = 0;
-
 
   auto draw_scene = [&](VkCommandBuffer cmd) {
     const VkBuffer vb[] = {positions, normals, materials};
@@ -327,124 +354,131 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cmd, std::uint32_t(m.indices.size()), 1, 0, 0, 0);
   };
-  // G-buffers: empty pixels are opaque black at the far plane. The second peeled layer reads the first's depth.
-  for (int k = 0; k < layers; ++k) {
-    const vk::pipeline& p = gbuffer_pipes[std::size_t(k)];
-    auto set = make_set(r, p, {gbuffer_shaders[std::size_t(k)].vertex, gbuffer_shaders[std::size_t(k)].fragment}, per_layer[0]);
-    if (!set) return failure{set.error()};
-    timed("gbuffer", [&](VkCommandBuffer cmd) {
-      barrier(cmd);
-      dev.begin_rendering(cmd, gbuffers[std::size_t(k)], {glm::vec4(0, 0, 0, 1), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)});
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
-      draw_scene(cmd);
-      dev.end_rendering(cmd);
-    });
-  }
-
-  if (forward) {
-    auto set = make_set(r, ambient_pipe, {ambient_shaders.vertex, ambient_shaders.fragment}, base);
-    if (!set) return failure{set.error()};
-    timed("ambient", [&](VkCommandBuffer cmd) {
-      barrier(cmd);
-      std::vector<glm::vec4> clear{glm::vec4(0, 0, 0, 1), glm::vec4(0.0f)};
-      if (with_depth) clear.push_back(glm::vec4(1.0f));
-      dev.begin_rendering(cmd, lit, clear);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ambient_pipe.handle);
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ambient_pipe.layout, 0, 1, &*set, 0, nullptr);
-      vkCmdBindVertexBuffers(cmd, 3, 1, &light_index, &zero);
-      draw_scene(cmd);
-      dev.end_rendering(cmd);
-    });
-  }
-  dev.submit([&](VkCommandBuffer cmd) {
-    barrier(cmd);
-    for (const vk::targets& lb : light_buffers) {
-      dev.begin_rendering(cmd, lb, {glm::vec4(0.0f)});
-      dev.end_rendering(cmd);
-    }
-  });
-  for (std::size_t i = 0; i < s.lights.size(); ++i) {
-    const light& l = s.lights[i];
-    const bool shadowed = any_shadows && l.shadows && l.kind == light_kind::spot;
-    if (shadowed) {
-      bindings seen_from_light = common;
-      auto ubo = r.buffer(std::vector<frame_block>{light_frame(s, l, o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "light frame");
-      if (!ubo) return failure{ubo.error()};
-      seen_from_light.buffers[frame_binding] = *ubo;
-      auto set = make_set(r, shadow_pipe, {shadow_shaders->vertex, shadow_shaders->fragment}, seen_from_light);
+  for (int n = 0; n < std::max(o.frames, 1); ++n) {
+    current.clear();
+    vkResetDescriptorPool(ctx.device, r.pool, 0);  // the last frame's submissions have all completed
+    // G-buffers: empty pixels are opaque black at the far plane. The second peeled layer reads the first's depth.
+    for (int k = 0; k < layers; ++k) {
+      const vk::pipeline& p = gbuffer_pipes[std::size_t(k)];
+      auto set = make_set(r, p, {gbuffer_shaders[std::size_t(k)].vertex, gbuffer_shaders[std::size_t(k)].fragment},
+                          per_layer[0]);
       if (!set) return failure{set.error()};
-      timed("shadow", [&](VkCommandBuffer cmd) {
+      timed("gbuffer", [&](VkCommandBuffer cmd) {
         barrier(cmd);
-        dev.begin_rendering(cmd, shadow_map, std::vector<glm::vec4>(shadow_map.colors.size(), glm::vec4(1.0f)));
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipe.handle);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipe.layout, 0, 1, &*set, 0, nullptr);
+        dev.begin_rendering(cmd, gbuffers[std::size_t(k)],
+                            {glm::vec4(0, 0, 0, 1), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)});
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
         draw_scene(cmd);
         dev.end_rendering(cmd);
       });
-      // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
-      if (mode == shadow_mode::transparent && shadow_picture.empty()) {
-        auto texels = dev.read_texels(shadow_map, 1);
-        if (!texels) return failure{texels.error()};
-        shadow_picture = *texels;
-      }
     }
+
     if (forward) {
-      const vk::pipeline& p = forward_light_pipes[shadowed ? 1 : 0];
-      const compiled& sh = forward_light_shaders[shadowed ? 1 : 0];
-      auto set = make_set(r, p, {sh.vertex, sh.fragment}, base);
+      auto set = make_set(r, ambient_pipe, {ambient_shaders.vertex, ambient_shaders.fragment}, base);
       if (!set) return failure{set.error()};
-      timed("light", [&](VkCommandBuffer cmd) {
+      timed("ambient", [&](VkCommandBuffer cmd) {
         barrier(cmd);
-        dev.begin_rendering(cmd, lit_colour_only, {});
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
-        const VkBuffer vb[] = {positions, normals, materials, light_index};
-        const VkDeviceSize offsets[] = {0, 0, 0, 0};
-        vkCmdBindVertexBuffers(cmd, 0, 4, vb, offsets);
-        vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, std::uint32_t(m.indices.size()), 1, 0, 0, std::uint32_t(i));
+        std::vector<glm::vec4> clear{glm::vec4(0, 0, 0, 1), glm::vec4(0.0f)};
+        if (with_depth) clear.push_back(glm::vec4(1.0f));
+        dev.begin_rendering(cmd, lit, clear);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ambient_pipe.handle);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ambient_pipe.layout, 0, 1, &*set, 0, nullptr);
+        vkCmdBindVertexBuffers(cmd, 3, 1, &light_index, &zero);
+        draw_scene(cmd);
         dev.end_rendering(cmd);
       });
-      continue;
     }
-    const volume v = volume_of(s, l);
-    const int vol = v == volume::fullscreen ? 0 : 1;
-    const vk::pipeline& p = light_pipes[shadowed ? 1 : 0][vol];
-    const compiled& sh = light_shaders[shadowed ? 1 : 0][vol];
-    for (int k = 0; k < layers; ++k) {
-    auto set = make_set(r, p, {sh.vertex, sh.fragment}, per_layer[std::size_t(k)]);
-    if (!set) return failure{set.error()};
-    timed("light", [&](VkCommandBuffer cmd) {
+    dev.submit([&](VkCommandBuffer cmd) {
       barrier(cmd);
-      dev.begin_rendering(cmd, light_buffers[std::size_t(k)], {});
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
-      vkCmdBindVertexBuffers(cmd, 3, 1, &light_index, &zero);
-      if (v == volume::fullscreen) {
-        vkCmdDraw(cmd, 3, 1, 0, std::uint32_t(i));
-      } else {
-        const bool is_sphere = v == volume::sphere;
-        vkCmdBindVertexBuffers(cmd, 0, 1, is_sphere ? &sphere_vertices : &cone_vertices, &zero);
-        vkCmdBindIndexBuffer(cmd, is_sphere ? sphere_indices : cone_indices, 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, std::uint32_t(is_sphere ? sphere.indices.size() : cone.indices.size()), 1, 0, 0, std::uint32_t(i));
+      for (const vk::targets& lb : light_buffers) {
+        dev.begin_rendering(cmd, lb, {glm::vec4(0.0f)});
+        dev.end_rendering(cmd);
       }
+    });
+    for (std::size_t i = 0; i < s.lights.size(); ++i) {
+      const light& l = s.lights[i];
+      const bool shadowed = any_shadows && l.shadows && l.kind == light_kind::spot;
+      if (shadowed) {
+        bindings seen_from_light = common;
+        seen_from_light.buffers[frame_binding] = light_ubos[i];
+        auto set = make_set(r, shadow_pipe, {shadow_shaders->vertex, shadow_shaders->fragment}, seen_from_light);
+        if (!set) return failure{set.error()};
+        timed("shadow", [&](VkCommandBuffer cmd) {
+          barrier(cmd);
+          dev.begin_rendering(cmd, shadow_map, std::vector<glm::vec4>(shadow_map.colors.size(), glm::vec4(1.0f)));
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipe.handle);
+          vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipe.layout, 0, 1, &*set, 0, nullptr);
+          draw_scene(cmd);
+          dev.end_rendering(cmd);
+        });
+        // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
+        if (mode == shadow_mode::transparent && shadow_picture.empty()) {
+          auto texels = dev.read_texels(shadow_map, 1);
+          if (!texels) return failure{texels.error()};
+          shadow_picture = *texels;
+        }
+      }
+      if (forward) {
+        const vk::pipeline& p = forward_light_pipes[shadowed ? 1 : 0];
+        const compiled& sh = forward_light_shaders[shadowed ? 1 : 0];
+        auto set = make_set(r, p, {sh.vertex, sh.fragment}, base);
+        if (!set) return failure{set.error()};
+        timed("light", [&](VkCommandBuffer cmd) {
+          barrier(cmd);
+          dev.begin_rendering(cmd, lit_colour_only, {});
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
+          vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
+          const VkBuffer vb[] = {positions, normals, materials, light_index};
+          const VkDeviceSize offsets[] = {0, 0, 0, 0};
+          vkCmdBindVertexBuffers(cmd, 0, 4, vb, offsets);
+          vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
+          vkCmdDrawIndexed(cmd, std::uint32_t(m.indices.size()), 1, 0, 0, std::uint32_t(i));
+          dev.end_rendering(cmd);
+        });
+        continue;
+      }
+      const volume v = volume_of(s, l);
+      const int vol = v == volume::fullscreen ? 0 : 1;
+      const vk::pipeline& p = light_pipes[shadowed ? 1 : 0][vol];
+      const compiled& sh = light_shaders[shadowed ? 1 : 0][vol];
+      for (int k = 0; k < layers; ++k) {
+        auto set = make_set(r, p, {sh.vertex, sh.fragment}, per_layer[std::size_t(k)]);
+        if (!set) return failure{set.error()};
+        timed("light", [&](VkCommandBuffer cmd) {
+          barrier(cmd);
+          dev.begin_rendering(cmd, light_buffers[std::size_t(k)], {});
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
+          vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
+          vkCmdBindVertexBuffers(cmd, 3, 1, &light_index, &zero);
+          if (v == volume::fullscreen) {
+            vkCmdDraw(cmd, 3, 1, 0, std::uint32_t(i));
+          } else {
+            const bool is_sphere = v == volume::sphere;
+            vkCmdBindVertexBuffers(cmd, 0, 1, is_sphere ? &sphere_vertices : &cone_vertices, &zero);
+            vkCmdBindIndexBuffer(cmd, is_sphere ? sphere_indices : cone_indices, 0, VK_INDEX_TYPE_UINT32);
+            vkCmdDrawIndexed(cmd, std::uint32_t(is_sphere ? sphere.indices.size() : cone.indices.size()), 1, 0, 0,
+                             std::uint32_t(i));
+          }
+          dev.end_rendering(cmd);
+        });
+      }
+    }
+
+    auto compose_set = make_set(r, *compose_pipe, {compose_shaders->vertex, compose_shaders->fragment}, common);
+    if (!compose_set) return failure{compose_set.error()};
+    timed(forward ? "blend" : "compose", [&](VkCommandBuffer cmd) {
+      barrier(cmd);
+      dev.begin_rendering(cmd, *final_target, {glm::vec4(0.0f)});
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, compose_pipe->handle);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, compose_pipe->layout, 0, 1, &*compose_set, 0,
+                              nullptr);
+      vkCmdDraw(cmd, 3, 1, 0, 0);
       dev.end_rendering(cmd);
     });
-    }
+    frames.push_back(current);
   }
-
-  auto compose_set = make_set(r, *compose_pipe, {compose_shaders->vertex, compose_shaders->fragment}, common);
-  if (!compose_set) return failure{compose_set.error()};
-  timed(forward ? "blend" : "compose", [&](VkCommandBuffer cmd) {
-    barrier(cmd);
-    dev.begin_rendering(cmd, *final_target, {glm::vec4(0.0f)});
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, compose_pipe->handle);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, compose_pipe->layout, 0, 1, &*compose_set, 0, nullptr);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    dev.end_rendering(cmd);
-  });
-  for (const auto& [pass, ms] : out.pass_ms) out.frame_ms += ms;
+  summarize(frames, out);
 
   const int w = o.width, h = o.height;
   auto picture = [&](const vk::targets& t, int index, format f, int pw, int ph, view_as how) -> result<image> {
@@ -485,7 +519,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     out.buffers.push_back({name, *img});
   }
   if (!shadow_picture.empty())
-    out.buffers.push_back({"shadow_colour", to_image(shadow_picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
+    out.buffers.push_back(
+        {"shadow_colour", to_image(shadow_picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
   return out;
 }
 
