@@ -352,9 +352,45 @@ TEST_CASE("a coloured pane casts the shadow Eq. 3.1 predicts, an opaque one a bl
   }
 }
 
+TEST_CASE("every shadowed light starts from an empty shadow map", "[render][shadow]") {
+  // The same spot light twice: each of its shadow passes must clear the map's depth, even after a light
+  // pass turned depth writes off, or the second pass finds the first's depths and keeps nothing.
+  const glm::vec3 colour(1.0f, 0.5f, 0.25f);
+  scene twice = shadow_scene(0.5f, colour);
+  twice.lights.push_back(twice.lights[0]);
+  for (light& l : twice.lights) l.intensity = 1.1f;  // still above the glass colour, twice below saturation
+  const options o = small(96, 96);
+  for (backend b : backends) {
+    auto once = draw(b, shadow_scene(0.5f, colour), o);
+    auto f = draw(b, twice, o);
+    if (!once || !f) continue;
+    INFO(name(b));
+    const glm::mat4 to_world = render::camera_frame(twice, o).inv_view_proj;
+    std::size_t in_shadow = 0;
+    for (int y = 0; y < o.height; ++y)
+      for (int x = 0; x < o.width; ++x) {
+        const std::size_t i = std::size_t(y * o.width + x);
+        const surface s = gbuffer_at(*f, i);
+        if (s.alpha < 1.0f || s.diffuse != glm::vec3(1.0f) || s.depth >= 1.0f) continue;
+        const glm::vec2 ndc((float(x) + 0.5f) / float(o.width) * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / float(o.height) * 2.0f);
+        const glm::vec4 h = to_world * glm::vec4(ndc, s.depth, 1.0f);
+        const glm::vec3 p = glm::vec3(h) / h.w;
+        if (std::fabs(p.x) >= 0.7f || std::fabs(p.z) >= 0.7f) continue;
+        ++in_shadow;
+        // Both lights filtered by the pane: twice one light's N.L C (1 - alpha).
+        CHECK(light_at(*f, i).light.x == Approx(2.0f * light_at(*once, i).light.x).margin(2.0 / 255.0));
+      }
+    CHECK(in_shadow > 50);
+  }
+}
+
 TEST_CASE("lights add: two lights give the sum of each alone, within quantisation", "[render]") {
-  const scene both = example("pane.json");
+  scene both = example("pane.json");
   REQUIRE(both.lights.size() >= 2);
+  // Two shadowed spot lights from different places: each needs its own shadow map, cleared in between.
+  both.lights[1] = both.lights[0];
+  both.lights[1].position = {-1.5f, 3.0f, 1.5f};
+  both.lights[1].direction = glm::normalize(glm::vec3(0.4f, -1.0f, -0.6f));
   scene first = both, second = both;
   first.lights = {both.lights[0]};
   second.lights = {both.lights[1]};

@@ -21,5 +21,6 @@ int to_int(const std::string& text, int lo, int hi, const std::string& what);
 int gen(std::vector<std::string> args);
 int eval(std::vector<std::string> args);
 int render(std::vector<std::string> args);
+int bench(std::vector<std::string> args);
 
 }  // namespace dstrans::cli

@@ -13,6 +13,7 @@ const char* const usage =
     "  gen <what> [options]   print GLSL: gbuffer <layout>, interlace <predicate>\n"
     "  eval --backend B       evaluate shared formulas by name on cpu, gl or vk (JSON lines)\n"
     "  render <scene.json>    render a frame and its buffers into --out DIR\n"
+    "  bench [--quick]        the thesis's comparisons with times and errors, into --out DIR\n"
     "run 'dstrans <command> --help' for a command's options\n";
 
 }  // namespace
@@ -57,6 +58,7 @@ int main(int argc, char** argv) {
   if (command == "gen") return dstrans::cli::gen(args);
   if (command == "eval") return dstrans::cli::eval(args);
   if (command == "render") return dstrans::cli::render(args);
+  if (command == "bench") return dstrans::cli::bench(args);
   std::fprintf(stderr, "dstrans: unknown command '%s'\n%s", command.c_str(), usage);
   return 2;
 }

@@ -210,6 +210,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         gl::debug_group g(k ? "gbuffer pass, second layer" : "gbuffer pass");
         const gl::targets& gb = gbuffers[std::size_t(k)];
         gl::bind(gb);
+        glDepthMask(GL_TRUE);  // clears obey the depth write mask, which the light passes turn off
         glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 0, clear_opaque_black);
         glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 1, clear_zero);
         glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 2, clear_zero);
@@ -231,6 +232,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       timed("ambient", [&] {
         gl::debug_group g("forward ambient pass");
         gl::bind(lit);
+        glDepthMask(GL_TRUE);  // clears obey the depth write mask, which the light passes turn off
         glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 0, clear_opaque_black);
         glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 1, clear_zero);
         if (with_depth) glClearNamedFramebufferfv(lit.framebuffer, GL_COLOR, 2, clear_far);
@@ -255,6 +257,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         timed("shadow", [&] {
           gl::debug_group g("shadow pass, light " + std::to_string(i));
           gl::bind(shadow_map);
+          glDepthMask(GL_TRUE);  // clears obey the depth write mask, which the light passes turn off
           glClearNamedFramebufferfv(shadow_map.framebuffer, GL_COLOR, 0, clear_far);
           if (mode == shadow_mode::transparent)
             glClearNamedFramebufferfv(shadow_map.framebuffer, GL_COLOR, 1, clear_far);

@@ -1,0 +1,246 @@
+// dstrans bench: the thesis's comparisons (Tables 4.1-4.7) measured on this machine, with the error of
+// each technique against deferred depth peeling (the thesis's reference), as results.json and report.md.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+#include "gpu.hpp"
+#include "passes.hpp"
+#include "render_gl.hpp"
+#include "render_vk.hpp"
+#include "scene_json.hpp"
+
+namespace dstrans::cli {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+const char* const usage =
+    "usage: dstrans bench [--quick] --out DIR [--backend gl|vk]\n"
+    "renders glass_room and its variants with every technique and setting the thesis compared, and writes\n"
+    "DIR/results.json and DIR/report.md; --quick measures fewer light counts at a smaller size\n";
+
+struct config {
+  render::technique method;
+  std::string scene;  // glass_room, glass_room_17, glass_room_0
+  int lights;         // the first this many spot lights of the scene
+  render::shadow_mode shadows;
+  bool refraction;
+};
+
+const char* technique_name(render::technique t) {
+  switch (t) {
+    case render::technique::interlaced: return "interlaced";
+    case render::technique::peeling: return "peeling";
+    case render::technique::forward: return "forward";
+    case render::technique::forward_depth: return "forward-depth";
+  }
+  return "?";
+}
+const char* shadow_name(render::shadow_mode m) {
+  return m == render::shadow_mode::off ? "off" : m == render::shadow_mode::opaque ? "opaque" : "transparent";
+}
+std::string key(const config& c) {
+  return std::string(technique_name(c.method)) + "/" + c.scene + "/" + std::to_string(c.lights) + "/" + shadow_name(c.shadows) +
+         "/" + (c.refraction ? "refraction" : "no refraction");
+}
+
+// Render targets and bytes a pixel of each technique (Table 4.1), from the layouts it allocates; shadow
+// maps are not counted, as in the thesis.
+std::pair<int, int> targets_and_bytes(render::technique t) {
+  const int gbuffer = thesis_gbuffer::target_count, light = thesis_light_buffer::target_count;
+  const int gbuffer_bytes = thesis_gbuffer::bytes_per_pixel, light_bytes = thesis_light_buffer::bytes_per_pixel;
+  switch (t) {
+    case render::technique::interlaced: return {gbuffer + light, gbuffer_bytes + light_bytes};
+    case render::technique::peeling: return {2 * (gbuffer + light), 2 * (gbuffer_bytes + light_bytes)};
+    case render::technique::forward:
+    case render::technique::forward_depth: {
+      int n = 0, bytes = 0;
+      for (const target_desc& d : render::forward_targets(t == render::technique::forward_depth)) {
+        ++n;
+        bytes += info(d.fmt).bytes_per_pixel;
+      }
+      return {n, bytes};
+    }
+  }
+  return {0, 0};
+}
+
+// The scene with only its first `n` spot lights (the thesis lit its scene with spot lights).
+scene with_lights(const scene& s, int n) {
+  scene out = s;
+  out.lights.clear();
+  for (const light& l : s.lights)
+    if (l.kind == light_kind::spot && int(out.lights.size()) < n) out.lights.push_back(l);
+  return out;
+}
+
+struct error {
+  double rmse, rmse_transparent, psnr;
+};
+
+// RMSE (0-255 per channel) and PSNR of `a` against `ref`, over all pixels and over `mask`.
+error compare(const render::image& a, const render::image& ref, const std::vector<bool>& mask) {
+  double all = 0.0, masked = 0.0;
+  std::size_t n = 0, m = 0;
+  for (std::size_t i = 0; i < ref.rgba.size() / 4; ++i)
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = double(a.rgba[4 * i + c]) - double(ref.rgba[4 * i + c]);
+      all += d * d;
+      ++n;
+      if (mask[i]) {
+        masked += d * d;
+        ++m;
+      }
+    }
+  const double rmse = std::sqrt(all / double(n));
+  return {rmse, m ? std::sqrt(masked / double(m)) : 0.0, rmse > 0.0 ? 20.0 * std::log10(255.0 / rmse) : INFINITY};
+}
+
+}  // namespace
+
+int bench(std::vector<std::string> args) {
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
+    std::fputs(usage, stdout);
+    return 0;
+  }
+  try {
+    const std::string out = take_option(args, "--out", "");
+    const std::string backend = take_option(args, "--backend", "gl");
+    bool quick = false;
+    for (const std::string& a : args) {
+      if (a == "--quick") quick = true;
+      else throw usage_error{"unknown argument '" + a + "'"};
+    }
+    if (out.empty()) throw usage_error{"bench needs --out DIR"};
+    if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
+    std::error_code ec;
+    std::filesystem::create_directories(out, ec);
+    if (ec || !std::ofstream(out + "/results.json")) {
+      std::fprintf(stderr, "dstrans bench: cannot write into %s\n", out.c_str());
+      return 1;
+    }
+    auto g = open_gpu(backend);
+    if (!g) {
+      std::fprintf(stderr, "dstrans bench: %s\n", g.error().c_str());
+      return 1;
+    }
+    std::map<std::string, scene> scenes;
+    for (const char* name : {"glass_room", "glass_room_17", "glass_room_0"}) {
+      auto s = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/" + name + ".json");
+      if (!s) {
+        std::fprintf(stderr, "dstrans bench: %s\n", s.error().c_str());
+        return 1;
+      }
+      scenes[name] = *s;
+    }
+
+    // The sweep: each table's comparisons, without repeats.
+    const std::vector<int> lights = quick ? std::vector<int>{0, 2, 8, 32} : std::vector<int>{0, 2, 4, 8, 16, 32, 64};
+    using T = render::technique;
+    using S = render::shadow_mode;
+    std::vector<config> configs;
+    std::map<std::string, bool> seen;
+    auto add = [&](config c) {
+      if (!seen[key(c)]) configs.push_back(c);
+      seen[key(c)] = true;
+    };
+    for (int n : lights) {
+      add({T::interlaced, "glass_room", n, S::off, true});  // Table 4.2
+      add({T::interlaced, "glass_room", n, S::off, false});
+      if (n > 0) {
+        add({T::interlaced, "glass_room", n, S::opaque, true});  // Table 4.3
+        add({T::interlaced, "glass_room", n, S::transparent, true});
+      }
+      for (T t : {T::peeling, T::forward, T::forward_depth})  // Tables 4.4, 4.5
+        for (S sh : n > 0 ? std::vector<S>{S::off, S::transparent} : std::vector<S>{S::off}) add({t, "glass_room", n, sh, true});
+    }
+    const int fixed = quick ? 8 : 16;  // Tables 4.6, 4.7
+    for (const char* name : {"glass_room", "glass_room_17", "glass_room_0"})
+      for (S sh : {S::off, S::transparent}) add({T::interlaced, name, fixed, sh, true});
+
+    render::options base;
+    base.width = quick ? 320 : 640;
+    base.height = quick ? 180 : 360;
+    base.shadow_size = quick ? 256 : 512;
+    base.frames = quick ? 3 : 7;
+    const bool tty = isatty(fileno(stderr));
+    std::map<std::string, render::frame> references;
+    json results = json::array();
+    for (std::size_t k = 0; k < configs.size(); ++k) {
+      const config& c = configs[k];
+      const scene s = with_lights(scenes.at(c.scene), c.lights);
+      auto run = [&](render::technique t) -> result<render::frame> {
+        render::options o = base;
+        o.method = t;
+        o.shadows = c.shadows;
+        o.refraction = c.refraction ? 8.0f : 0.0f;
+#ifdef DSTRANS_HAVE_GL
+        if ((*g)->gl) return render::render_gl(s, o, DSTRANS_SHADER_DIR);
+#endif
+#ifdef DSTRANS_HAVE_VK
+        if ((*g)->vk) return render::render_vk(*(*g)->vk, s, o, DSTRANS_SHADER_DIR);
+#endif
+        return failure{"no backend"};
+      };
+      auto f = run(c.method);
+      if (!f) {
+        std::fprintf(stderr, "dstrans bench: %s: %s\n", key(c).c_str(), f.error().c_str());
+        return 1;
+      }
+      // The reference: deferred depth peeling with the same lights, shadows and refraction.
+      config rc = c;
+      rc.method = T::peeling;
+      if (!references.count(key(rc))) {
+        auto ref = c.method == T::peeling ? f : run(T::peeling);
+        if (!ref) {
+          std::fprintf(stderr, "dstrans bench: %s: %s\n", key(rc).c_str(), ref.error().c_str());
+          return 1;
+        }
+        references[key(rc)] = *ref;
+      }
+      const render::frame& ref = references.at(key(rc));
+      std::vector<bool> glass(ref.gbuffer[0].size());
+      for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, ref.gbuffer[0][i]).w < 1.0f;
+      const error e = compare(f->final_image, ref.final_image, glass);
+      const auto [targets, bytes] = targets_and_bytes(c.method);
+      json rec{{"technique", technique_name(c.method)},
+               {"scene", c.scene},
+               {"backend", backend},
+               {"settings", {{"lights", c.lights}, {"shadows", shadow_name(c.shadows)}, {"refraction", c.refraction},
+                             {"width", base.width}, {"height", base.height}, {"frames", f->frames}}},
+               {"frame_ms", f->frame_ms},
+               {"frame_ms_spread", f->frame_ms_spread},
+               {"pass_ms", f->pass_ms},
+               {"bytes_per_pixel", bytes},
+               {"render_targets", targets},
+               {"reference", "deferred depth peeling"},
+               {"rmse", e.rmse},
+               {"rmse_transparent", e.rmse_transparent},
+               {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)},
+               {"leak_pixels", nullptr}};
+      results.push_back(rec);
+      std::fprintf(stderr, "%s[%zu/%zu] %s: %.2f ms, RMSE %.2f%s", tty ? "\r\033[K" : "", k + 1, configs.size(), key(c).c_str(),
+                   f->frame_ms, e.rmse, tty ? "" : "\n");
+    }
+    if (tty) std::fputc('\n', stderr);
+    std::ofstream(out + "/results.json") << results.dump(1) << "\n";
+    std::printf("dstrans bench: %zu runs on %s: %s/results.json\n", results.size(), backend.c_str(), out.c_str());
+    return 0;
+  } catch (const usage_error& e) {
+    std::fprintf(stderr, "dstrans bench: %s\n%s", e.message.c_str(), usage);
+    return 2;
+  }
+}
+
+}  // namespace dstrans::cli
