@@ -2,6 +2,7 @@
 // each technique against deferred depth peeling (the thesis's reference), as results.json and report.md.
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -173,7 +174,7 @@ int bench(std::vector<std::string> args) {
     base.width = quick ? 320 : 640;
     base.height = quick ? 180 : 360;
     base.shadow_size = quick ? 256 : 512;
-    base.frames = quick ? 3 : 7;
+    base.frames = quick ? 5 : 9;
     const bool tty = isatty(fileno(stderr));
     std::map<std::string, render::frame> references;
     json results = json::array();
@@ -235,7 +236,16 @@ int bench(std::vector<std::string> args) {
     }
     if (tty) std::fputc('\n', stderr);
     std::ofstream(out + "/results.json") << results.dump(1) << "\n";
-    std::printf("dstrans bench: %zu runs on %s: %s/results.json\n", results.size(), backend.c_str(), out.c_str());
+    // report.md and the plot come from results.json alone (bench/report.py, matplotlib); Debian's python3
+    // has matplotlib, so it is preferred over another python3 earlier on the PATH.
+    const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const std::string command = python + " '" + DSTRANS_SOURCE_DIR + "/bench/report.py' '" + out + "/results.json' '" + out + "'";
+    if (std::system(command.c_str()) != 0) {
+      std::fprintf(stderr, "dstrans bench: the report failed (%s); results.json is written\n", command.c_str());
+      return 1;
+    }
+    std::printf("dstrans bench: %zu runs on %s: %s/results.json, report.md, accuracy_vs_time.png\n", results.size(),
+                backend.c_str(), out.c_str());
     return 0;
   } catch (const usage_error& e) {
     std::fprintf(stderr, "dstrans bench: %s\n%s", e.message.c_str(), usage);

@@ -1,0 +1,203 @@
+#!/usr/bin/env python3
+"""Writes report.md and accuracy_vs_time.png from a dstrans bench results.json (dstrans bench runs it).
+
+usage: report.py RESULTS_JSON OUT_DIR
+The thesis's Tables 4.1-4.7 are reproduced as ratios, ours beside the thesis's (GTX 760, 1920x1080).
+"""
+import json
+import os
+import sys
+
+# The thesis's figures (TECHNIQUES.md, S0).
+THESIS = {
+    "targets": {"interlaced": 5, "peeling": 10, "forward-depth": 3, "forward": 2},
+    "refraction_cost": "11% with no lights (564 -> 499 fps), 4% at 64 lights (148 -> 142)",
+    "shadow_cost": "13% at 2 lights (394 -> 343 fps), 34% at 64 (53 -> 35)",
+    "vs_peeling": "1.2x to 1.6x faster with shadows, 1.8x to 2.0x without",
+    "vs_forward": "slower at 2-4 lights, faster from 8 (up to 1.57x with shadows at 32, 3.9x without at 64)",
+    "shares": "no consistent difference between 35%, 17% and 0% transparent triangles (within +-2 fps)",
+}
+
+
+def find(results, **want):
+    for r in results:
+        s = r["settings"]
+        if all((r.get(k) if k in ("technique", "scene") else s.get(k)) == v for k, v in want.items()):
+            return r
+    return None
+
+
+def ms(r):
+    return None if r is None else r["frame_ms"]
+
+
+def pct(a, b):
+    return "n/a" if a is None or b is None or b == 0 else "%+.0f%%" % (100.0 * (a - b) / b)
+
+
+def ratio(a, b):
+    return "n/a" if a is None or b is None or b == 0 else "%.2fx" % (a / b)
+
+
+def main():
+    results_path, out = sys.argv[1], sys.argv[2]
+    results = json.load(open(results_path))
+    lights = sorted({r["settings"]["lights"] for r in results})
+    first = results[0]
+    size = "%dx%d" % (first["settings"]["width"], first["settings"]["height"])
+    lines = []
+    w = lines.append
+    w("# dstrans bench: the thesis's comparisons on this machine")
+    w("")
+    w("Backend %s, %s pixels, glass_room (58,792 triangles), the median of %d frames per run; times are GPU "
+      "milliseconds per frame from timestamp queries. The reference for every error figure is deferred depth "
+      "peeling at the same settings; RMSE is over 0-255 channel values, on all pixels and on pixels the "
+      "reference's first layer covers with glass." % (first["backend"], size, first["settings"]["frames"]))
+    w("")
+    w("A CPU rasteriser is not a GTX 760: llvmpipe shades in JIT-compiled SIMD code on %s cores, so "
+      "fragment work and memory traffic weigh far more, and fixed costs (a draw, a pass) far less, than on the "
+      "thesis's GPU; geometry passes over 59K triangles are cheap beside full-screen shading at this size. "
+      "Ratios are the comparable figures; absolute times are not." % "2")
+    w("")
+
+    w("## Table 4.1: render targets and memory")
+    w("")
+    w("| technique | targets (ours) | targets (thesis) | bytes a pixel |")
+    w("|---|---|---|---|")
+    for t in ("interlaced", "peeling", "forward-depth", "forward"):
+        r = find(results, technique=t)
+        if r:
+            w("| %s | %d | %d | %d |" % (t, r["render_targets"], THESIS["targets"][t], r["bytes_per_pixel"]))
+    w("")
+
+    w("## Table 4.2: the cost of refraction (interlaced, no shadows)")
+    w("")
+    w("| lights | with refraction (ms) | without (ms) | cost |")
+    w("|---|---|---|---|")
+    for n in lights:
+        a = find(results, technique="interlaced", scene="glass_room", lights=n, shadows="off", refraction=True)
+        b = find(results, technique="interlaced", scene="glass_room", lights=n, shadows="off", refraction=False)
+        if a and b:
+            w("| %d | %.2f | %.2f | %s |" % (n, ms(a), ms(b), pct(ms(a), ms(b))))
+    w("")
+    spread = sorted(r["frame_ms_spread"] for r in results)[len(results) // 2]
+    w("Thesis: %s. Here the median interquartile spread of a run's frames is %.2f ms, so a difference "
+      "smaller than that is noise, not a cost." % (THESIS["refraction_cost"], spread))
+    w("")
+
+    w("## Table 4.3: transparent against opaque shadows (interlaced)")
+    w("")
+    w("| lights | transparent (ms) | opaque (ms) | cost |")
+    w("|---|---|---|---|")
+    for n in lights:
+        a = find(results, technique="interlaced", scene="glass_room", lights=n, shadows="transparent", refraction=True)
+        b = find(results, technique="interlaced", scene="glass_room", lights=n, shadows="opaque", refraction=True)
+        if a and b:
+            w("| %d | %.2f | %.2f | %s |" % (n, ms(a), ms(b), pct(ms(a), ms(b))))
+    w("")
+    costs = []
+    for n in lights:
+        a = find(results, technique="interlaced", scene="glass_room", lights=n, shadows="transparent", refraction=True)
+        b = find(results, technique="interlaced", scene="glass_room", lights=n, shadows="opaque", refraction=True)
+        if a and b:
+            costs.append("%s at %d lights" % (pct(ms(a), ms(b)), n))
+    w("Thesis: %s. Here: %s. Transparent shadows add one RGBA8 target to each shadow pass and a second "
+      "texel and the Eq. 3.1 selection to each lookup." % (THESIS["shadow_cost"], ", ".join(costs) or "not measured"))
+    w("")
+
+    for shadows, title in (("transparent", "Table 4.4: with transparent shadows"), ("off", "Table 4.5: without shadows")):
+        w("## %s: interlaced against depth peeling and forward rendering" % title)
+        w("")
+        w("| lights | interlaced (ms) | peeling (ms) | speed-up | forward (ms) | speed-up | forward-depth (ms) | speed-up |")
+        w("|---|---|---|---|---|---|---|---|")
+        for n in lights:
+            if n == 0 and shadows != "off":
+                continue
+            i = find(results, technique="interlaced", scene="glass_room", lights=n, shadows=shadows, refraction=True)
+            p = find(results, technique="peeling", scene="glass_room", lights=n, shadows=shadows, refraction=True)
+            f = find(results, technique="forward", scene="glass_room", lights=n, shadows=shadows, refraction=True)
+            d = find(results, technique="forward-depth", scene="glass_room", lights=n, shadows=shadows, refraction=True)
+            if i:
+                w("| %d | %.2f | %s | %s | %s | %s | %s | %s |" % (
+                    n, ms(i), "%.2f" % ms(p) if p else "n/a", ratio(ms(p), ms(i)), "%.2f" % ms(f) if f else "n/a",
+                    ratio(ms(f), ms(i)), "%.2f" % ms(d) if d else "n/a", ratio(ms(d), ms(i))))
+        w("")
+    def speedups(other, shadows):
+        out = []
+        for n in lights:
+            i = find(results, technique="interlaced", scene="glass_room", lights=n, shadows=shadows, refraction=True)
+            o = find(results, technique=other, scene="glass_room", lights=n, shadows=shadows, refraction=True)
+            if i and o and (n > 0 or shadows == "off"):
+                out.append((n, ms(o) / ms(i)))
+        return out
+    def span(v):
+        return "%.2fx to %.2fx" % (min(x for _, x in v), max(x for _, x in v)) if v else "not measured"
+    slower = [n for n, x in speedups("forward-depth", "transparent") + speedups("forward-depth", "off") if x < 1.0]
+    w("Thesis: against peeling %s; against forward %s. Here: against peeling %s with shadows and %s "
+      "without; against forward with depth %s with shadows and %s without%s. Peeling draws the scene twice "
+      "and lights two G-buffers; forward rendering draws all geometry once per light." % (
+          THESIS["vs_peeling"], THESIS["vs_forward"], span(speedups("peeling", "transparent")),
+          span(speedups("peeling", "off")), span(speedups("forward-depth", "transparent")),
+          span(speedups("forward-depth", "off")),
+          "; forward is the faster at %s lights" % ", ".join(str(n) for n in sorted(set(slower))) if slower else ""))
+    w("")
+
+    w("## Tables 4.6 and 4.7: the share of transparent triangles (interlaced)")
+    w("")
+    w("| scene | transparent triangles | shadows (ms) | no shadows (ms) |")
+    w("|---|---|---|---|")
+    zero = [r for r in results if r["scene"] == "glass_room_0"]
+    fixed = zero[0]["settings"]["lights"] if zero else None
+    times = []
+    for scene, share in (("glass_room", "37.5%"), ("glass_room_17", "17.1%"), ("glass_room_0", "0%")):
+        a = find(results, technique="interlaced", scene=scene, lights=fixed, shadows="transparent", refraction=True)
+        b = find(results, technique="interlaced", scene=scene, lights=fixed, shadows="off", refraction=True)
+        if a and b:
+            w("| %s | %s | %.2f | %.2f |" % (scene, share, ms(a), ms(b)))
+            times.append((ms(a), ms(b)))
+    w("")
+    if times:
+        with_s, without = [t[0] for t in times], [t[1] for t in times]
+        w("Thesis: %s. Here, at %d lights, the shares differ by at most %.0f%% with shadows and %.0f%% without "
+          "(max against min). The renderer does not tell transparent from opaque objects apart: the same passes "
+          "run." % (THESIS["shares"], fixed, 100 * (max(with_s) / min(with_s) - 1), 100 * (max(without) / min(without) - 1)))
+    w("")
+
+    w("## Accuracy against deferred depth peeling")
+    w("")
+    w("| technique | lights | shadows | refraction | ms | RMSE | RMSE on glass | PSNR (dB) |")
+    w("|---|---|---|---|---|---|---|---|")
+    for r in results:
+        if r["scene"] == "glass_room" and r["technique"] != "peeling":
+            s = r["settings"]
+            w("| %s | %d | %s | %s | %.2f | %.2f | %.2f | %s |" % (
+                r["technique"], s["lights"], s["shadows"], "on" if s["refraction"] else "off", r["frame_ms"], r["rmse"],
+                r["rmse_transparent"], "%.1f" % r["psnr"] if r["psnr"] is not None else "identical"))
+    w("")
+    w("Leak pixels (Figure 4.7) are not measured yet: `leak_pixels` is null in every record.")
+    w("")
+    w("![accuracy against time](accuracy_vs_time.png)")
+    w("")
+    open(os.path.join(out, "report.md"), "w").write("\n".join(lines))
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.5), dpi=110)
+    colours = {"interlaced": "tab:blue", "peeling": "tab:green", "forward": "tab:red", "forward-depth": "tab:orange"}
+    for t, c in colours.items():
+        pts = [(r["frame_ms"], r["rmse_transparent"]) for r in results if r["technique"] == t and r["scene"] == "glass_room"]
+        if pts:
+            ax.scatter([p[0] for p in pts], [p[1] for p in pts], label=t, color=c, s=22)
+    ax.set_xscale("log")
+    ax.set_xlabel("frame time (ms, log scale)")
+    ax.set_ylabel("RMSE on glass pixels against peeling (0-255)")
+    ax.set_title("Accuracy against time, glass_room, every setting")
+    ax.legend()
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "accuracy_vs_time.png"))
+
+
+if __name__ == "__main__":
+    main()
