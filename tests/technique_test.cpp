@@ -74,6 +74,16 @@ TEST_CASE("refraction offset, depth rejection and the compose blend (Eq. 3.3)", 
   CHECK(dst_refraction_rejected(0.6f, 0.4f));        // the glass is behind the sample: a leak
   CHECK_FALSE(dst_refraction_rejected(0.4f, 0.6f));
   CHECK_FALSE(dst_refraction_rejected(0.5f, 0.5f));  // equal depths are not a leak
+  // The moved sample: opaque behind the glass is taken; in front of it, rejected by depth.
+  CHECK(dst_refraction_accepted_by_depth(1.0f, 0.4f, 0.3f, 0.6f));
+  CHECK(dst_refraction_accepted_by_depth(0.4f, 1.0f, 0.3f, 0.6f));
+  CHECK_FALSE(dst_refraction_accepted_by_depth(1.0f, 0.4f, 0.6f, 0.3f));
+  CHECK_FALSE(dst_refraction_accepted_by_depth(0.4f, 0.4f, 0.3f, 0.6f));  // glass on both rows: no opaque sample
+  // Without depth only glass coverage decides (Figure 4.7): beside the glass a valid sample is rejected,
+  // and a foreground sample over glass would be taken.
+  CHECK(dst_refraction_accepted_by_mask(1.0f, 0.4f));
+  CHECK_FALSE(dst_refraction_accepted_by_mask(1.0f, 1.0f));
+  CHECK_FALSE(dst_refraction_accepted_by_mask(0.4f, 0.4f));
 
   surface o = dst_surface_zero(), t = dst_surface_zero();
   o.diffuse = {1.0f, 1.0f, 1.0f};

@@ -15,6 +15,7 @@
 
 #include "cli.hpp"
 #include "gpu.hpp"
+#include "leaks.hpp"
 #include "passes.hpp"
 #include "render_gl.hpp"
 #include "render_vk.hpp"
@@ -211,6 +212,25 @@ int bench(std::vector<std::string> args) {
         references[key(rc)] = *ref;
       }
       const render::frame& ref = references.at(key(rc));
+      // Leak pixels: techniques that reject by depth have none by construction; forward rendering without
+      // depth is measured against the buffers of its depth variant at the same settings.
+      json leak_pixels = {{"foreground_accepted", 0}, {"background_rejected", 0}};
+      if (c.method == T::forward && c.refraction) {
+        config dc = c;
+        dc.method = T::forward_depth;
+        if (!references.count(key(dc))) {
+          auto d = run(T::forward_depth);
+          if (!d) {
+            std::fprintf(stderr, "dstrans bench: %s: %s\n", key(dc).c_str(), d.error().c_str());
+            return 1;
+          }
+          references[key(dc)] = *d;
+        }
+        render::options o = base;
+        o.refraction = 8.0f;
+        const render::leaks l = render::count_leaks(references.at(key(dc)), s, o);
+        leak_pixels = {{"foreground_accepted", l.foreground_accepted}, {"background_rejected", l.background_rejected}};
+      }
       std::vector<bool> glass(ref.gbuffer[0].size());
       for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, ref.gbuffer[0][i]).w < 1.0f;
       const error e = compare(f->final_image, ref.final_image, glass);
@@ -229,7 +249,7 @@ int bench(std::vector<std::string> args) {
                {"rmse", e.rmse},
                {"rmse_transparent", e.rmse_transparent},
                {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)},
-               {"leak_pixels", nullptr}};
+               {"leak_pixels", leak_pixels}};
       results.push_back(rec);
       std::fprintf(stderr, "%s[%zu/%zu] %s: %.2f ms, RMSE %.2f%s", tty ? "\r\033[K" : "", k + 1, configs.size(), key(c).c_str(),
                    f->frame_ms, e.rmse, tty ? "" : "\n");

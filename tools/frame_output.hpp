@@ -21,9 +21,11 @@ struct image {
 
 struct frame {
   image final_image;
-  // The raw targets, for tests that check a pass against the CPU: the G-buffer's four and the light buffer.
+  // The raw targets, for checks of a pass against the CPU: deferred, the (first) G-buffer's four and the
+  // light buffer; forward, the lit colour, normal and (with depth) depth targets.
   std::vector<std::vector<texel>> gbuffer;
   std::vector<texel> light_buffer;
+  std::vector<std::vector<texel>> lit;
   std::vector<std::pair<std::string, image>> buffers;  // in the order the passes make them
   std::map<std::string, double> pass_ms;  // the median over the frames rendered, per pass
   double frame_ms = 0.0;                   // the median frame (sum of its passes)

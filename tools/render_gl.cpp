@@ -357,6 +357,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     for (int t = 0; t < 4; ++t) out.gbuffer.push_back(gl::read_texels(gbuffers[0], t));
     out.light_buffer = gl::read_texels(light_buffers[0], 0);
   } else {
+    for (std::size_t t = 0; t < lit.textures.size(); ++t) out.lit.push_back(gl::read_texels(lit, int(t)));
     out.buffers.push_back({"colour", to_image(gl::read_texels(lit, 0), format::rgba8, w, h, view_as::rgb)});
     out.buffers.push_back({"normals", to_image(gl::read_texels(lit, 1), format::rgb10a2, w, h, view_as::rgb)});
     if (with_depth)

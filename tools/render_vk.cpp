@@ -486,6 +486,12 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!texels) return failure{texels.error()};
     return to_image(*texels, f, pw, ph, how, s.view.near_plane, s.view.far_plane);
   };
+  if (forward)
+    for (std::size_t t = 0; t < lit.colors.size(); ++t) {
+      auto texels = dev.read_texels(lit, int(t));
+      if (!texels) return failure{texels.error()};
+      out.lit.push_back(*texels);
+    }
   if (!forward) {
     for (int t = 0; t < 4; ++t) {
       auto texels = dev.read_texels(gbuffers[0], t);

@@ -295,6 +295,8 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_transparent_shadow, dst_opaque_shadow),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_offset),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_rejected),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_depth).within("alpha_moved", {0.0f, 1.0f}).within("alpha_partner", {0.0f, 1.0f}),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_mask).within("alpha_moved", {0.0f, 1.0f}).within("alpha_partner", {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_compose, dst_shade),
       DSTRANS_FORMULA(dst_compose, dst_blend),
       DSTRANS_FORMULA(dst_compose, dst_compose),

@@ -17,6 +17,11 @@
 // Choices: screen y grows downwards while view y grows upwards, so the offset's y is negated; equal depths
 // are not rejected (a surface does not leak into itself); strength 0 gives no offset, and the compose
 // is then exactly the de-interlaced blend.
+// The moved sample is taken when one of the moved pixel and its partner is opaque (alpha_moved,
+// alpha_partner) and, by depth, it lies behind the glass; forward rendering without depth can only ask
+// instead whether glass covers the moved pixel (the other of the two is transparent): Sousa's mask, which
+// accepts a foreground object seen through other glass and rejects background beside the glass, the two
+// errors of the thesis's Figure 4.7.
 #pragma once
 
 #include "detail/shared.hpp"
@@ -27,6 +32,12 @@ DST_FN vec2 dst_refraction_offset(vec3 view_normal, float strength) {
   return vec2(view_normal.x, -view_normal.y) * strength;
 }
 DST_FN bool dst_refraction_rejected(float depth_t, float depth_o) { return depth_t > depth_o; }
+DST_FN bool dst_refraction_accepted_by_depth(float alpha_moved, float alpha_partner, float depth_t, float depth_o) {
+  return max(alpha_moved, alpha_partner) >= 1.0f && !dst_refraction_rejected(depth_t, depth_o);
+}
+DST_FN bool dst_refraction_accepted_by_mask(float alpha_moved, float alpha_partner) {
+  return max(alpha_moved, alpha_partner) >= 1.0f && min(alpha_moved, alpha_partner) < 1.0f;
+}
 )
 
 DSTRANS_SHARED(dst_compose,

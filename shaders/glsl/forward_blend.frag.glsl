@@ -26,14 +26,14 @@ void main() {
   ivec2 moved = clamp(p + ivec2(round(dst_refraction_offset(view_normal, frame.params.x))), ivec2(0), size - 1);
   ivec2 moved_partner = dst_interlace_partner(moved, size);
   vec4 r = texelFetch(dst_forward_colour, moved, 0), r2 = texelFetch(dst_forward_colour, moved_partner, 0);
-  bool glass_at_moved = r.w < 1.0f || r2.w < 1.0f;
+  float alpha_moved = r.w, alpha_partner = r2.w;
   ivec2 ro = r.w < 1.0f ? moved_partner : moved;
   if (r.w < 1.0f) r = r2;
 #ifdef DST_FORWARD_DEPTH
-  bool accept = r.w >= 1.0f && !dst_refraction_rejected(texelFetch(dst_forward_depth, tp, 0).x,
-                                                         texelFetch(dst_forward_depth, ro, 0).x);
+  bool accept = dst_refraction_accepted_by_depth(alpha_moved, alpha_partner, texelFetch(dst_forward_depth, tp, 0).x,
+                                                 texelFetch(dst_forward_depth, ro, 0).x);
 #else
-  bool accept = r.w >= 1.0f && glass_at_moved;
+  bool accept = dst_refraction_accepted_by_mask(alpha_moved, alpha_partner);
 #endif
   if (accept) o = r;
   colour = vec4(dst_blend(o.xyz, t.xyz, t.w), 1.0f);
