@@ -34,6 +34,17 @@ volume volume_of(const scene& s, const light& l) {
   return shape_of(l) == volume::fullscreen || camera_inside(s, l) ? volume::fullscreen : shape_of(l);
 }
 
+frame_plan plan_of(const scene& s, const options& o) {
+  const bool any = std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
+  frame_plan p{};
+  p.shadows = any ? o.shadows : shadow_mode::off;
+  p.forward = is_forward(o.method);
+  p.forward_depth = o.method == technique::forward_depth;
+  p.peeling = o.method == technique::peeling;
+  p.layers = p.forward ? 0 : p.peeling ? 2 : 1;
+  return p;
+}
+
 frame_block camera_frame(const scene& s, const options& o) {
   frame_block f{};
   f.view = s.view.view();

@@ -31,6 +31,15 @@ struct options {
   int frames = 1;  // frames rendered with the same resources; times are their medians
 };
 
+// What a frame of `s` with options `o` consists of, derived once for both backends.
+struct frame_plan {
+  shadow_mode shadows;  // off unless a spot light casts shadows and the options ask for them
+  bool forward, forward_depth, peeling;
+  int layers;           // G-buffers (and light buffers): 0 forward, 2 peeling, 1 interlaced
+  bool shadowed(const light& l) const { return shadows != shadow_mode::off && l.shadows && l.kind == light_kind::spot; }
+};
+frame_plan plan_of(const scene& s, const options& o);
+
 struct frame_block {
   glm::mat4 view_proj, inv_view_proj, view;
   glm::vec4 camera_position, ambient;

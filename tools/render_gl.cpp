@@ -55,15 +55,13 @@ void bind_light_index(GLuint vao, GLuint indices) {
 result<frame> render_gl(const scene& s, const options& o, const std::string& shader_dir) {
   resources r;
   gl::state_guard keep;
-  const bool any_shadows = o.shadows != shadow_mode::off &&
-                           std::any_of(s.lights.begin(), s.lights.end(),
-                                       [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
-  const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
+  const frame_plan plan = plan_of(s, o);
+  const shadow_mode mode = plan.shadows;
+  const bool any_shadows = mode != shadow_mode::off;
 
   // Deferred: one G-buffer and light buffer (interlaced), or one a peeled layer. Forward: one lit target.
-  const bool forward = is_forward(o.method), with_depth = o.method == technique::forward_depth;
-  const bool peeling = o.method == technique::peeling;
-  const int layers = forward ? 0 : peeling ? 2 : 1;
+  const bool forward = plan.forward, with_depth = plan.forward_depth, peeling = plan.peeling;
+  const int layers = plan.layers;
   std::vector<GLuint> gbuffer_progs;
   GLuint compose_prog = 0, light_progs[2][2] = {}, ambient_prog = 0, forward_light_progs[2] = {};
   if (!forward) {
@@ -252,7 +250,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     for (const gl::targets& lb : light_buffers) glClearNamedFramebufferfv(lb.framebuffer, GL_COLOR, 0, clear_zero);
     for (std::size_t i = 0; i < s.lights.size(); ++i) {
       const light& l = s.lights[i];
-      const bool shadowed = any_shadows && l.shadows && l.kind == light_kind::spot;
+      const bool shadowed = plan.shadowed(l);
       if (shadowed) {
         timed("shadow", [&] {
           gl::debug_group g("shadow pass, light " + std::to_string(i));

@@ -126,16 +126,14 @@ VkVertexInputAttributeDescription attribute(std::uint32_t location, std::uint32_
 result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const std::string& shader_dir) {
   resources r(dev);
   const vk::context& ctx = dev.ctx();
-  const bool any_shadows = o.shadows != shadow_mode::off &&
-                           std::any_of(s.lights.begin(), s.lights.end(),
-                                       [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
-  const shadow_mode mode = any_shadows ? o.shadows : shadow_mode::off;
+  const frame_plan plan = plan_of(s, o);
+  const shadow_mode mode = plan.shadows;
+  const bool any_shadows = mode != shadow_mode::off;
 
   // Deferred: one G-buffer and light buffer (interlaced), or one a peeled layer. Forward: one lit target,
   // and a view of its colour and depth alone for the light passes (it owns nothing).
-  const bool forward = is_forward(o.method), with_depth = o.method == technique::forward_depth;
-  const bool peeling = o.method == technique::peeling;
-  const int layers = forward ? 0 : peeling ? 2 : 1;
+  const bool forward = plan.forward, with_depth = plan.forward_depth, peeling = plan.peeling;
+  const int layers = plan.layers;
   vk::targets lit, lit_colour_only;
   if (forward) {
     auto t = dev.make_targets(forward_targets(with_depth), o.width, o.height, "forward", true);
@@ -339,7 +337,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   // Each shadowed light's view, made once for all frames.
   std::vector<VkBuffer> light_ubos(s.lights.size(), VK_NULL_HANDLE);
   for (std::size_t i = 0; i < s.lights.size(); ++i)
-    if (any_shadows && s.lights[i].shadows && s.lights[i].kind == light_kind::spot) {
+    if (plan.shadowed(s.lights[i])) {
       auto ubo = r.buffer(std::vector<frame_block>{light_frame(s, s.lights[i], o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                           "light frame");
       if (!ubo) return failure{ubo.error()};
@@ -398,7 +396,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     });
     for (std::size_t i = 0; i < s.lights.size(); ++i) {
       const light& l = s.lights[i];
-      const bool shadowed = any_shadows && l.shadows && l.kind == light_kind::spot;
+      const bool shadowed = plan.shadowed(l);
       if (shadowed) {
         bindings seen_from_light = common;
         seen_from_light.buffers[frame_binding] = light_ubos[i];

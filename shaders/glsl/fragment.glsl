@@ -2,3 +2,17 @@
 
 // The pixel a fragment covers, rows from the top on both APIs.
 ivec2 dst_pixel() { return ivec2(gl_FragCoord.xy); }
+
+// The surface of a fragment of `m` with interpolated normal `normal`: transparent materials are
+// double-sided, their normal turned to face the viewer.
+dst_surface dst_material_surface(dst_material_data m, vec3 normal) {
+  bool transparent = m.diffuse_alpha.w < 1.0f;
+  dst_surface s = dst_surface_zero();
+  s.diffuse = m.diffuse_alpha.xyz;
+  s.alpha = m.diffuse_alpha.w;
+  s.normal = normalize(gl_FrontFacing || !transparent ? normal : -normal);
+  s.spec_intensity = m.specular.x;
+  s.spec_power = m.specular.y;
+  s.depth = gl_FragCoord.z;
+  return s;
+}

@@ -16,12 +16,5 @@ void main() {
 #else
   if (transparent && !dst_interlace_keep(dst_pixel(), frame.size.xy)) discard;
 #endif
-  dst_surface s = dst_surface_zero();
-  s.diffuse = m.diffuse_alpha.xyz;
-  s.alpha = m.diffuse_alpha.w;
-  s.normal = normalize(gl_FrontFacing || !transparent ? world_normal : -world_normal);
-  s.spec_intensity = m.specular.x;
-  s.spec_power = m.specular.y;
-  s.depth = gl_FragCoord.z;
-  dst_gbuffer_write(s);
+  dst_gbuffer_write(dst_material_surface(m, world_normal));
 }

@@ -8,9 +8,5 @@ void main() {
 #ifdef DST_TRANSPARENT_SHADOWS
   if (m.diffuse_alpha.w < 1.0f && !dst_interlace_keep(dst_pixel(), frame.size.zw)) discard;
 #endif
-  dst_surface s = dst_surface_zero();
-  s.diffuse = m.diffuse_alpha.xyz;
-  s.alpha = m.diffuse_alpha.w;
-  s.depth = gl_FragCoord.z;
-  dst_shadow_write(s);
+  dst_shadow_write(dst_material_surface(m, world_normal));
 }
