@@ -17,8 +17,12 @@
 #include "gpu.hpp"
 #include "leaks.hpp"
 #include "passes.hpp"
+#ifdef DSTRANS_HAVE_GL
 #include "render_gl.hpp"
+#endif
+#ifdef DSTRANS_HAVE_VK
 #include "render_vk.hpp"
+#endif
 #include "scene_json.hpp"
 
 namespace dstrans::cli {

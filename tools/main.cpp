@@ -58,7 +58,14 @@ int main(int argc, char** argv) {
   if (command == "gen") return dstrans::cli::gen(args);
   if (command == "eval") return dstrans::cli::eval(args);
   if (command == "render") return dstrans::cli::render(args);
-  if (command == "bench") return dstrans::cli::bench(args);
+  if (command == "bench") {
+#ifdef DSTRANS_HAVE_BENCH
+    return dstrans::cli::bench(args);
+#else
+    std::fputs("dstrans: this dstrans was built without the benchmark (DSTRANS_BUILD_BENCH=OFF)\n", stderr);
+    return 2;
+#endif
+  }
   std::fprintf(stderr, "dstrans: unknown command '%s'\n%s", command.c_str(), usage);
   return 2;
 }

@@ -6,8 +6,12 @@
 
 #include "cli.hpp"
 #include "gpu.hpp"
+#ifdef DSTRANS_HAVE_GL
 #include "render_gl.hpp"
+#endif
+#ifdef DSTRANS_HAVE_VK
 #include "render_vk.hpp"
+#endif
 #include "scene_json.hpp"
 
 namespace dstrans::cli {
