@@ -28,14 +28,14 @@ namespace dstrans::testing {
 // (0, -0, 1, -1, 0.5, 255, tiny, huge, infinities, NaN; 0, 1, -1, 2, 7, 8, INT_MAX, INT_MIN), rotating
 // so that each argument meets each edge value; the rest are random within each argument's domain
 // (formula::domains: floats in [lo, hi] or unit vectors; ints in [-2, 64]).
-inline words random_args(const formula& f, std::size_t calls, std::uint32_t seed) {
+inline words random_args(const formula& f, std::size_t calls, std::uint32_t seed, std::size_t edge_calls = 16) {
   static const float float_edges[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 255.0f, 1e-7f, 1e7f, INFINITY, -INFINITY, NAN};
   static const int int_edges[] = {0, 1, -1, 2, 7, 8, 2147483647, -2147483647 - 1};
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> small(-2, 64);
   words out;
   for (std::size_t call = 0; call < calls; ++call) {
-    const bool edge = call < 16;
+    const bool edge = call < edge_calls;
     std::size_t scalar = 0;  // the scalar's position within this call
     input_range range;
     std::function<void(const value_type&)> gen = [&](const value_type& t) {
@@ -111,6 +111,56 @@ inline bool agrees(const value_type& t, const std::uint32_t* cpu, const std::uin
     }
   }
   return true;
+}
+
+// The property of issue 6: for arguments within their domains, every float of every result is finite
+// and within the formula's promised range (formula::yields). Returns the number of calls that break it
+// and describes the first in `why`.
+inline std::size_t broken_properties(const formula& f, const words& results, std::size_t calls, std::string& why) {
+  std::size_t broken = 0;
+  const std::size_t n = std::size_t(f.result.word_count());
+  std::function<void(const value_type&, const std::uint32_t*&, bool&, std::string&)> walk =
+      [&](const value_type& t, const std::uint32_t*& p, bool& ok, std::string& what) {
+        if (t.kind == value_kind::record) {
+          for (const auto& fld : t.fields) walk(fld.second, p, ok, what);
+          return;
+        }
+        for (int k = 0; k < t.word_count(); ++k) {
+          if (!t.is_float()) {
+            ++p;
+            continue;
+          }
+          const float v = value_traits<float>::get(p);
+          if (!std::isfinite(v) || v < f.result_lo || v > f.result_hi) {
+            ok = false;
+            what = std::to_string(v);
+          }
+        }
+      };
+  for (std::size_t i = 0; i < calls; ++i) {
+    const std::uint32_t* p = results.data() + i * n;
+    bool ok = true;
+    std::string what;
+    walk(f.result, p, ok, what);
+    if (!ok && !broken++) why = "call " + std::to_string(i) + " gives " + what;
+  }
+  return broken;
+}
+
+// Every formula, 100,000 calls within its domains through `run`: no result breaks its property.
+template <class Run>
+void check_every_property(Run&& run) {
+  for (const formula& f : formulas()) {
+    const std::size_t calls = 100000;
+    const words args = random_args(f, calls, 6u, 0);
+    const auto results = run(f, args, calls);
+    INFO(f.name);
+    REQUIRE(results);
+    std::string why;
+    const std::size_t broken = broken_properties(f, *results, calls, why);
+    INFO("first: " << why);
+    CHECK(broken == 0);
+  }
 }
 
 }  // namespace dstrans::testing

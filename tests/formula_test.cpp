@@ -8,6 +8,8 @@
 #include <dstrans/dstrans.hpp>
 #include <dstrans_spirv.hpp>
 
+#include "agreement.hpp"
+
 using namespace dstrans;
 
 TEST_CASE("every function of every shared block is reachable by name", "[formula]") {
@@ -154,4 +156,8 @@ TEST_CASE("light meshes are closed, wound outwards, and enclose their unit shape
       }
     }
   }
+}
+
+TEST_CASE("every formula's result is finite and within its physical range for 100,000 inputs (CPU)", "[formula][property]") {
+  testing::check_every_property([](const formula& f, const words& a, std::size_t n) -> result<words> { return run_cpu(f, a, n); });
 }

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <tuple>
@@ -202,11 +203,20 @@ struct formula {
   value_type result;
   std::function<words(const words&)> cpu;  // one call: the packed arguments in, the packed result out
   std::vector<input_range> domains;        // one per argument
+  // Every float of the result, for arguments within their domains: finite and within [lo, hi] (the
+  // physical range: light and colour at least 0, alpha and factors within [0, 1]).
+  float result_lo = -INFINITY, result_hi = INFINITY;
 
   // This formula with argument `arg` meant to lie in `r`.
   formula within(const std::string& arg, input_range r) && {
     for (std::size_t i = 0; i < args.size(); ++i)
       if (args[i].first == arg) domains[i] = r;
+    return std::move(*this);
+  }
+  // This formula promising results within [lo, hi] for arguments within their domains.
+  formula yields(float lo, float hi) && {
+    result_lo = lo;
+    result_hi = hi;
     return std::move(*this);
   }
 };
@@ -268,12 +278,12 @@ formula make_formula(const shared_text& block, const char* name, R (*fn)(A...)) 
 // until it is).
 inline const std::vector<formula>& formulas() {
   static const std::vector<formula> all{
-      DSTRANS_FORMULA(dst_surface, dst_surface_zero),
-      DSTRANS_FORMULA(dst_light_sample, dst_light_sample_zero),
-      DSTRANS_FORMULA(dst_normal_unorm, dst_encode_normal),
-      DSTRANS_FORMULA(dst_normal_unorm, dst_decode_normal),
-      DSTRANS_FORMULA(dst_spec_power_unorm, dst_encode_spec_power),
-      DSTRANS_FORMULA(dst_spec_power_unorm, dst_decode_spec_power),
+      DSTRANS_FORMULA(dst_surface, dst_surface_zero).yields(0.0f, 0.0f),
+      DSTRANS_FORMULA(dst_light_sample, dst_light_sample_zero).yields(0.0f, 0.0f),
+      DSTRANS_FORMULA(dst_normal_unorm, dst_encode_normal).within("n", unit_vector()).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_normal_unorm, dst_decode_normal).within("e", {0.0f, 1.0f}).yields(-1.0f, 1.0f),
+      DSTRANS_FORMULA(dst_spec_power_unorm, dst_encode_spec_power).within("p", {0.0f, 255.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_spec_power_unorm, dst_decode_spec_power).within("e", {0.0f, 1.0f}).yields(0.0f, 255.0f),
       DSTRANS_FORMULA(dst_interlace_rows, dst_rows_keep),
       DSTRANS_FORMULA(dst_interlace_rows, dst_rows_partner),
       DSTRANS_FORMULA(dst_interlace_columns, dst_columns_keep),
@@ -282,24 +292,52 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_interlace_checker, dst_checker_partner),
       DSTRANS_FORMULA(dst_interlace_none, dst_none_keep),
       DSTRANS_FORMULA(dst_interlace_none, dst_none_partner),
-      DSTRANS_FORMULA(dst_fullscreen, dst_fullscreen_position),
+      DSTRANS_FORMULA(dst_fullscreen, dst_fullscreen_position).yields(-1.0f, 3.0f),
       DSTRANS_FORMULA(dst_phong, dst_phong)
           .within("n", unit_vector())
           .within("l", unit_vector())
           .within("v", unit_vector())
           .within("spec_power", {0.0f, 255.0f})
-          .within("light", {0.0f, 4.0f}),
-      DSTRANS_FORMULA(dst_attenuation, dst_attenuation),
-      DSTRANS_FORMULA(dst_attenuation, dst_spot_falloff),
-      DSTRANS_FORMULA(dst_transparent_shadow, dst_transparent_shadow),
-      DSTRANS_FORMULA(dst_transparent_shadow, dst_opaque_shadow),
-      DSTRANS_FORMULA(dst_refraction, dst_refraction_offset),
+          .within("light", {0.0f, 4.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_attenuation, dst_attenuation).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_attenuation, dst_spot_falloff).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_transparent_shadow)
+          .within("light", {0.0f, 4.0f})
+          .within("d_p", {0.0f, 1.0f})
+          .within("bias", {0.0f, 0.01f})
+          .within("depth_a", {0.0f, 1.0f})
+          .within("occluder_a", {0.0f, 1.0f})
+          .within("depth_b", {0.0f, 1.0f})
+          .within("occluder_b", {0.0f, 1.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_opaque_shadow)
+          .within("light", {0.0f, 4.0f})
+          .within("d_p", {0.0f, 1.0f})
+          .within("bias", {0.0f, 0.01f})
+          .within("depth", {0.0f, 1.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_offset).within("view_normal", unit_vector()).within("strength", {0.0f, 64.0f}),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_rejected),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_depth).within("alpha_moved", {0.0f, 1.0f}).within("alpha_partner", {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_mask).within("alpha_moved", {0.0f, 1.0f}).within("alpha_partner", {0.0f, 1.0f}),
-      DSTRANS_FORMULA(dst_compose, dst_shade),
-      DSTRANS_FORMULA(dst_compose, dst_blend),
-      DSTRANS_FORMULA(dst_compose, dst_compose),
+      DSTRANS_FORMULA(dst_compose, dst_shade)
+          .within("s", {0.0f, 1.0f})
+          .within("l", {0.0f, 4.0f})
+          .within("ambient", {0.0f, 1.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_compose, dst_blend)
+          .within("opaque", {0.0f, 4.0f})
+          .within("transparent", {0.0f, 4.0f})
+          .within("alpha_t", {0.0f, 1.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_compose, dst_compose)
+          .within("o", {0.0f, 1.0f})
+          .within("light_o", {0.0f, 4.0f})
+          .within("t", {0.0f, 1.0f})
+          .within("light_t", {0.0f, 4.0f})
+          .within("ambient", {0.0f, 1.0f})
+          .yields(0.0f, INFINITY),
   };
   return all;
 }
