@@ -113,6 +113,9 @@ TEST_CASE("the full-screen triangle covers clip space", "[fullscreen]") {
   CHECK(shader::dst_fullscreen_position(0) == glm::vec2(-1, -1));
   CHECK(shader::dst_fullscreen_position(1) == glm::vec2(3, -1));
   CHECK(shader::dst_fullscreen_position(2) == glm::vec2(-1, 3));
+  CHECK(shader::dst_pixel_ndc({0, 0}, {4, 2}) == glm::vec2(-0.75f, 0.5f));  // top left
+  CHECK(shader::dst_pixel_ndc({3, 1}, {4, 2}) == glm::vec2(0.75f, -0.5f));  // bottom right
+  CHECK(shader::dst_pixel_ndc({0, 0}, {0, 0}) == glm::vec2(0.0f, 0.0f));    // a size below 1 counts as 1
   for (spirv::api a : {spirv::api::opengl, spirv::api::vulkan}) {
     glsl::source vs = glsl::fullscreen_vertex_shader();
     if (a == spirv::api::vulkan) CHECK(vs.str().find("gl_VertexIndex") != std::string::npos);

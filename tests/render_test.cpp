@@ -353,8 +353,7 @@ TEST_CASE("a coloured pane casts the shadow Eq. 3.1 predicts, an opaque one a bl
         const std::size_t i = std::size_t(y * o.width + x);
         const surface s = gbuffer_at(*glass, i);
         if (s.alpha < 1.0f || s.diffuse != glm::vec3(1.0f) || s.depth >= 1.0f) continue;
-        const glm::vec2 ndc((float(x) + 0.5f) / float(o.width) * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / float(o.height) * 2.0f);
-        const glm::vec4 h = to_world * glm::vec4(ndc, s.depth, 1.0f);
+        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), s.depth, 1.0f);
         const glm::vec3 p = glm::vec3(h) / h.w;
         const float n_dot_l = glm::normalize(glm::vec3(0.0f, 3.0f, 0.0f) - p).y;
         if (std::fabs(p.x) < 0.7f && std::fabs(p.z) < 0.7f) {
@@ -399,8 +398,7 @@ TEST_CASE("every shadowed light starts from an empty shadow map", "[render][shad
         const std::size_t i = std::size_t(y * o.width + x);
         const surface s = gbuffer_at(*f, i);
         if (s.alpha < 1.0f || s.diffuse != glm::vec3(1.0f) || s.depth >= 1.0f) continue;
-        const glm::vec2 ndc((float(x) + 0.5f) / float(o.width) * 2.0f - 1.0f, 1.0f - (float(y) + 0.5f) / float(o.height) * 2.0f);
-        const glm::vec4 h = to_world * glm::vec4(ndc, s.depth, 1.0f);
+        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), s.depth, 1.0f);
         const glm::vec3 p = glm::vec3(h) / h.w;
         if (std::fabs(p.x) >= 0.7f || std::fabs(p.z) >= 0.7f) continue;
         ++in_shadow;

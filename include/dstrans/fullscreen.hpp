@@ -1,7 +1,9 @@
-// The full-screen triangle every screen-space pass draws: three vertices, no vertex buffer.
+// Screen-space conventions: the full-screen triangle every screen-space pass draws (three vertices, no
+// vertex buffer), and where a pixel's centre lies in normalized device coordinates.
 //
 //   dstrans::glsl::source vs = dstrans::glsl::fullscreen_vertex_shader();   // draw 3 vertices
 //   glm::vec2 clip = dstrans::shader::dst_fullscreen_position(2);           // (-1, 3)
+//   glm::vec2 ndc = dstrans::shader::dst_pixel_ndc({0, 0}, {4, 2});          // (-0.75, 0.5): top left
 #pragma once
 
 #include "detail/shared.hpp"
@@ -11,6 +13,15 @@
 DSTRANS_SHARED(dst_fullscreen,
 DST_FN vec2 dst_fullscreen_position(int vertex) {
   return vec2(float((vertex & 1) * 4 - 1), float((vertex & 2) * 2 - 1));
+}
+)
+
+// The centre of `pixel` (column from the left, row from the top) in the normalized device coordinates of
+// an image of `size` (clip-space +y is the top row on both backends); sizes below 1 count as 1.
+DSTRANS_SHARED(dst_pixel_ndc,
+DST_FN vec2 dst_pixel_ndc(ivec2 pixel, ivec2 size) {
+  vec2 extent = vec2(max(size, ivec2(1)));
+  return vec2((float(pixel.x) + 0.5f) / extent.x * 2.0f - 1.0f, 1.0f - (float(pixel.y) + 0.5f) / extent.y * 2.0f);
 }
 )
 

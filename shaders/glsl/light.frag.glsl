@@ -2,9 +2,7 @@
 layout(location = 0) flat in uint light_id;
 
 vec3 dst_world_position(ivec2 pixel, float depth) {
-  vec2 ndc = vec2((float(pixel.x) + 0.5f) / float(frame.size.x) * 2.0f - 1.0f,
-                  1.0f - (float(pixel.y) + 0.5f) / float(frame.size.y) * 2.0f);
-  vec4 h = frame.inv_view_proj * vec4(ndc, depth, 1.0f);
+  vec4 h = frame.inv_view_proj * vec4(dst_pixel_ndc(pixel, frame.size.xy), depth, 1.0f);
   return h.xyz / h.w;
 }
 
