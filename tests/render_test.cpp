@@ -378,6 +378,38 @@ TEST_CASE("a coloured pane casts the shadow Eq. 3.1 predicts, an opaque one a bl
   }
 }
 
+TEST_CASE("the physically based transmittance filters a pane's light by I_L C (1 - alpha)", "[render][shadow]") {
+  const glm::vec3 colour(1.0f, 0.5f, 0.25f);
+  scene s = shadow_scene(0.5f, colour);
+  s.lights[0].intensity = 1.0f;  // dim enough that I_L C stays below 1 in the light buffer
+  options o = small(96, 96);
+  o.physical_transmittance = true;
+  for (backend b : backends) {
+    auto f = draw(b, s, o);
+    if (!f) continue;
+    INFO(name(b));
+    const glm::mat4 to_world = render::camera_frame(s, o).inv_view_proj;
+    const glm::vec3 light_position = s.lights[0].position;
+    std::size_t in_shadow = 0;
+    for (int y = 0; y < o.height; ++y)
+      for (int x = 0; x < o.width; ++x) {
+        const std::size_t i = std::size_t(y * o.width + x);
+        const surface g = gbuffer_at(*f, i);
+        if (g.alpha < 1.0f || g.diffuse != glm::vec3(1.0f) || g.depth >= 1.0f) continue;
+        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), g.depth, 1.0f);
+        const glm::vec3 p = glm::vec3(h) / h.w;
+        if (std::fabs(p.x) >= 0.7f || std::fabs(p.z) >= 0.7f) continue;
+        ++in_shadow;
+        const float distance = glm::length(light_position - p);
+        const float n_dot_l = (light_position.y - p.y) / distance;
+        const glm::vec3 want = n_dot_l * shader::dst_attenuation(distance, s.lights[0].range) * colour * 0.5f;
+        const glm::vec3 got = light_at(*f, i).light;
+        for (int c = 0; c < 3; ++c) CHECK(got[c] == Approx(want[c]).margin(2.0 / 255.0));
+      }
+    CHECK(in_shadow > 50);
+  }
+}
+
 TEST_CASE("every shadowed light starts from an empty shadow map", "[render][shadow]") {
   // The same spot light twice: each of its shadow passes must clear the map's depth, even after a light
   // pass turned depth writes off, or the second pass finds the first's depths and keeps nothing.

@@ -62,6 +62,19 @@ TEST_CASE("transparent shadows (Eq. 3.1, 3.2): opaque blocks, glass filters by m
   CHECK(dst_transparent_shadow(light, 0.7f, 0.0f, 0.3f, glass, 0.7f, wall) == filtered);
   CHECK(dst_transparent_shadow(light, 0.75f, 0.1f, 0.3f, glass, 0.7f, wall) == filtered);
   CHECK(dst_transparent_shadow(light, 0.35f, 0.1f, 0.3f, glass, 0.7f, wall) == light);
+  // The case of Eq. 3.1, and the physically based transmittance I_L C (1 - alpha) beside Eq. 3.2's min.
+  CHECK(dst_shadow_case(0.9f, 0.0f, 0.3f, glass, 0.7f, wall) == 0);
+  CHECK(dst_shadow_case(0.5f, 0.0f, 0.3f, glass, 0.7f, wall) == 1);
+  CHECK(dst_shadow_case(0.2f, 0.0f, 0.3f, glass, 0.7f, wall) == 2);
+  CHECK(dst_shadow_texel_transparent(glass, wall));
+  CHECK_FALSE(dst_shadow_texel_transparent(wall, glass));
+  CHECK(dst_shadow_texel_transparent(wall, wall));  // equal alphas: the texel itself
+  const glm::vec3 bright(2.0f), through = dst_transmitted_shadow(bright, 0.5f, 0.0f, 0.3f, glass, 0.7f, wall);
+  CHECK(through.x == Approx(2.0f * 0.2f * 0.75f));
+  CHECK(through.y == Approx(2.0f * 0.9f * 0.75f));
+  CHECK(dst_transparent_shadow(bright, 0.5f, 0.0f, 0.3f, glass, 0.7f, wall).y == Approx(0.9f * 0.75f));  // min clamps
+  CHECK(dst_transmitted_shadow(light, 0.9f, 0.0f, 0.3f, glass, 0.7f, wall) == glm::vec3(0.0f));
+  CHECK(dst_transmitted_shadow(light, 0.2f, 0.0f, 0.3f, glass, 0.7f, wall) == light);
   // Plain shadow maps: in or out.
   CHECK(dst_opaque_shadow(light, 0.5f, 0.0f, 0.3f) == glm::vec3(0.0f));
   CHECK(dst_opaque_shadow(light, 0.5f, 0.0f, 0.6f) == light);

@@ -28,6 +28,8 @@ struct options {
   float shadow_bias = 0.0005f;
   int shadow_size = 512;
   shadow_mode shadows = shadow_mode::transparent;  // for spot lights that cast them
+  // Light through glass: the thesis's min(I_L, C) (Eq. 3.2), or the physically based I_L C.
+  bool physical_transmittance = false;
   int frames = 1;  // frames rendered with the same resources; times are their medians
 };
 

@@ -64,12 +64,13 @@ result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode) {
   return scene_vertex(dir, std::move(p));
 }
 
-result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume) {
+result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, bool physical_transmittance) {
   pass_sources p;
   if (volume) p.vertex.add("#define DST_LIGHT_VOLUME\n", __FILE__, __LINE__);
   p.vertex.add_shared(text::dst_fullscreen);
   if (auto ok = finish(p.vertex, dir, {"light.vert.glsl"}); !ok) return failure{ok.error()};
   p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
+  if (physical_transmittance) p.fragment.add("#define DST_TRANSMITTANCE\n", __FILE__, __LINE__);
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = gbuffer_binding;
@@ -112,11 +113,13 @@ std::vector<target_desc> forward_targets(bool with_depth) {
   return t;
 }
 
-result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, bool with_depth, shadow_mode mode) {
+result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, bool with_depth, shadow_mode mode,
+                                  bool physical_transmittance) {
   pass_sources p;
   if (with_depth) p.fragment.add("#define DST_FORWARD_DEPTH\n", __FILE__, __LINE__);
   if (stage == forward_stage::light) {
     p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
+    if (physical_transmittance) p.fragment.add("#define DST_TRANSMITTANCE\n", __FILE__, __LINE__);
     if (mode != shadow_mode::off) add_shadow_layout(p.fragment, mode, glsl::side::read);
   }
   glsl::add_interlace<I>(p.fragment);

@@ -32,12 +32,13 @@ struct pass_sources {
 // `dir` is the folder of the pass shaders (shaders/glsl).
 result<pass_sources> gbuffer_pass(const std::string& dir, layer which);
 result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode);
-result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume);
+result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, bool physical_transmittance);
 result<pass_sources> compose_pass(const std::string& dir, technique method);
 
 // The forward renderer's passes: ambient (colour, normal, depth), one light, and the blend.
 enum class forward_stage { ambient, light, blend };
-result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, bool with_depth, shadow_mode mode);
+result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, bool with_depth, shadow_mode mode,
+                                  bool physical_transmittance = false);
 // Its targets: lit colour and alpha, the normal, and with depth the window depth.
 std::vector<target_desc> forward_targets(bool with_depth);
 

@@ -21,6 +21,7 @@ const char* const usage =
     "usage: dstrans render <scene.json> --backend gl|vk --out DIR [--width W --height H] [--technique NAME]\n"
     "       [--refraction PIXELS] [--shadows off|opaque|transparent] [--shadow-bias DEPTH] [--shadow-size N]\n"
     "       [--frames N]   render N frames with the same resources; pass times are their medians\n"
+    "       [--transmittance thesis|physical]   light through glass: min(I_L, C) (Eq. 3.2) or I_L C\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
@@ -49,6 +50,9 @@ int render(std::vector<std::string> args) {
     } catch (const std::exception&) {
       throw usage_error{"--shadow-bias must be a number from 0 to 1 (shadow-map depth), not '" + bias + "'"};
     }
+    const std::string transmittance = take_option(args, "--transmittance", "thesis");
+    if (transmittance == "physical") o.physical_transmittance = true;
+    else if (transmittance != "thesis") throw usage_error{"--transmittance must be thesis or physical, not '" + transmittance + "'"};
     const std::string shadows = take_option(args, "--shadows", "transparent");
     if (shadows == "off") o.shadows = render::shadow_mode::off;
     else if (shadows == "opaque") o.shadows = render::shadow_mode::opaque;

@@ -78,7 +78,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed)
       for (int vol = 0; vol < 2; ++vol) {
         auto p =
-            r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1),
+            r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1, o.physical_transmittance),
                       std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen"));
         if (!p) return failure{p.error()};
         light_progs[shadowed][vol] = *p;
@@ -89,7 +89,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     if (!a) return failure{a.error()};
     ambient_prog = *a;
     for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed) {
-      auto p = r.program(forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off),
+      auto p = r.program(forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off,
+                                   o.physical_transmittance),
                          std::string("forward light pass") + (shadowed ? " shadowed" : ""));
       if (!p) return failure{p.error()};
       forward_light_progs[shadowed] = *p;

@@ -214,7 +214,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     for (int vol = 0; vol < 2; ++vol) {
       const std::string name =
           std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen");
-      auto sh = compile(dev, light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1), name);
+      auto sh = compile(dev, light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1, o.physical_transmittance), name);
       if (!sh) return failure{sh.error()};
       light_shaders[shadowed][vol] = *sh;
       vk::pipeline_state st;
@@ -246,7 +246,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed) {
       const std::string name = std::string("forward light pass") + (shadowed ? " shadowed" : "");
       auto sh = compile(
-          dev, forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off), name);
+          dev, forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off,
+                                   o.physical_transmittance), name);
       if (!sh) return failure{sh.error()};
       forward_light_shaders[shadowed] = *sh;
       vk::pipeline_state st = forward_state;

@@ -312,6 +312,17 @@ inline const std::vector<formula>& formulas() {
           .within("depth_b", {0.0f, 1.0f})
           .within("occluder_b", {0.0f, 1.0f})
           .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_transmitted_shadow)
+          .within("light", {0.0f, 4.0f})
+          .within("d_p", {0.0f, 1.0f})
+          .within("bias", {0.0f, 0.01f})
+          .within("depth_a", {0.0f, 1.0f})
+          .within("occluder_a", {0.0f, 1.0f})
+          .within("depth_b", {0.0f, 1.0f})
+          .within("occluder_b", {0.0f, 1.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_texel_transparent),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_case),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_opaque_shadow)
           .within("light", {0.0f, 4.0f})
           .within("d_p", {0.0f, 1.0f})

@@ -12,22 +12,42 @@
 //
 // Choices: equal alphas make the texel itself the transparent candidate; the bias moves the point
 // towards the light (a positive bias removes self-shadowing acne); dst_opaque_shadow is the plain
-// shadow map the thesis compares with, looked up at the texel only.
+// shadow map the thesis compares with, looked up at the texel only. dst_shadow_case says which line of
+// Eq. 3.1 applies (0 blocked, 1 through the transparent candidate, 2 lit) for both transmittances.
+// Eq. 3.2's min(I_L, C) is the default, as in the thesis: it only darkens a channel where the light is
+// brighter than the glass, so a light of intensity 1 or more through glass of colour C gives C(1 - alpha)
+// whatever its brightness, and dim light passes glass almost uncoloured. dst_transmitted_shadow offers the
+// physically based transmittance I_L C (1 - alpha) instead: each channel scaled by the glass's colour.
 #pragma once
 
 #include "detail/shared.hpp"
 
 DSTRANS_SHARED(dst_transparent_shadow,
-DST_FN vec3 dst_transparent_shadow(vec3 light, float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b,
-                                   vec4 occluder_b) {
-  bool a_transparent = occluder_a.w <= occluder_b.w;
+DST_FN bool dst_shadow_texel_transparent(vec4 occluder_a, vec4 occluder_b) { return occluder_a.w <= occluder_b.w; }
+DST_FN int dst_shadow_case(float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b, vec4 occluder_b) {
+  bool a_transparent = dst_shadow_texel_transparent(occluder_a, occluder_b);
   float d_min = a_transparent ? depth_a : depth_b;
   float d_max = a_transparent ? depth_b : depth_a;
-  vec4 c_min = a_transparent ? occluder_a : occluder_b;
   float d = d_p - bias;
-  if (d_max < d) return vec3(0.0f);
-  if (d_min < d) return min(light, vec3(c_min.x, c_min.y, c_min.z)) * (1.0f - c_min.w);
-  return light;
+  if (d_max < d) return 0;
+  if (d_min < d) return 1;
+  return 2;
+}
+DST_FN vec3 dst_transparent_shadow(vec3 light, float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b,
+                                   vec4 occluder_b) {
+  int k = dst_shadow_case(d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
+  if (k == 0) return vec3(0.0f);
+  if (k == 2) return light;
+  vec4 c = dst_shadow_texel_transparent(occluder_a, occluder_b) ? occluder_a : occluder_b;
+  return min(light, vec3(c.x, c.y, c.z)) * (1.0f - c.w);
+}
+DST_FN vec3 dst_transmitted_shadow(vec3 light, float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b,
+                                   vec4 occluder_b) {
+  int k = dst_shadow_case(d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
+  if (k == 0) return vec3(0.0f);
+  if (k == 2) return light;
+  vec4 c = dst_shadow_texel_transparent(occluder_a, occluder_b) ? occluder_a : occluder_b;
+  return light * vec3(c.x, c.y, c.z) * (1.0f - c.w);
 }
 DST_FN vec3 dst_opaque_shadow(vec3 light, float d_p, float bias, float depth) {
   return depth < d_p - bias ? vec3(0.0f) : light;

@@ -1,5 +1,6 @@
 // The light one light gives a point: attenuation, spot falloff, the shadow map (plain, or transparent by
-// Eq. 3.1-3.2) and Phong (Eq. 2.1). Shared by the deferred light pass and the forward light passes.
+// Eq. 3.1-3.2; with DST_TRANSMITTANCE by I_L C instead of min(I_L, C)) and Phong (Eq. 2.1). Shared by the
+// deferred light pass and the forward light passes.
 
 #if defined(DST_OPAQUE_SHADOWS) || defined(DST_TRANSPARENT_SHADOWS)
 vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
@@ -12,8 +13,13 @@ vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
 #ifdef DST_TRANSPARENT_SHADOWS
   ivec2 other = dst_interlace_partner(texel, size);
   dst_surface a = dst_shadow_read(texel), b = dst_shadow_read(other);
+#ifdef DST_TRANSMITTANCE
+  return dst_transmitted_shadow(light, ndc.z, frame.params.y, a.depth, vec4(a.diffuse, a.alpha), b.depth,
+                                vec4(b.diffuse, b.alpha));
+#else
   return dst_transparent_shadow(light, ndc.z, frame.params.y, a.depth, vec4(a.diffuse, a.alpha), b.depth,
                                 vec4(b.diffuse, b.alpha));
+#endif
 #else
   return dst_opaque_shadow(light, ndc.z, frame.params.y, dst_shadow_read(texel).depth);
 #endif
