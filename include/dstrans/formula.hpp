@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <initializer_list>
 #include <tuple>
 #include <string>
 #include <utility>
@@ -207,12 +208,14 @@ struct formula {
   // physical range: light and colour at least 0, alpha and factors within [0, 1]).
   float result_lo = -INFINITY, result_hi = INFINITY;
 
-  // This formula with argument `arg` meant to lie in `r`.
-  formula within(const std::string& arg, input_range r) && {
-    for (std::size_t i = 0; i < args.size(); ++i)
-      if (args[i].first == arg) domains[i] = r;
+  // This formula with arguments `names` meant to lie in `r`.
+  formula within(std::initializer_list<const char*> names, input_range r) && {
+    for (const char* arg : names)
+      for (std::size_t i = 0; i < args.size(); ++i)
+        if (args[i].first == arg) domains[i] = r;
     return std::move(*this);
   }
+  formula within(const char* arg, input_range r) && { return std::move(*this).within({arg}, r); }
   // This formula promising results within [lo, hi] for arguments within their domains.
   formula yields(float lo, float hi) && {
     result_lo = lo;
@@ -295,9 +298,7 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_fullscreen, dst_fullscreen_position).yields(-1.0f, 3.0f),
       DSTRANS_FORMULA(dst_pixel_ndc, dst_pixel_ndc),
       DSTRANS_FORMULA(dst_phong, dst_phong)
-          .within("n", unit_vector())
-          .within("l", unit_vector())
-          .within("v", unit_vector())
+          .within({"n", "l", "v"}, unit_vector())
           .within("spec_power", {0.0f, 255.0f})
           .within("light", {0.0f, 4.0f})
           .yields(0.0f, INFINITY),
@@ -305,34 +306,30 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_attenuation, dst_spot_falloff).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_transparent_shadow)
           .within("light", {0.0f, 4.0f})
-          .within("d_p", {0.0f, 1.0f})
+          .within({"d_p", "depth_a", "occluder_a", "depth_b", "occluder_b"}, {0.0f, 1.0f})
           .within("bias", {0.0f, 0.01f})
-          .within("depth_a", {0.0f, 1.0f})
-          .within("occluder_a", {0.0f, 1.0f})
-          .within("depth_b", {0.0f, 1.0f})
-          .within("occluder_b", {0.0f, 1.0f})
           .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_transmitted_shadow)
           .within("light", {0.0f, 4.0f})
-          .within("d_p", {0.0f, 1.0f})
+          .within({"d_p", "depth_a", "occluder_a", "depth_b", "occluder_b"}, {0.0f, 1.0f})
           .within("bias", {0.0f, 0.01f})
-          .within("depth_a", {0.0f, 1.0f})
-          .within("occluder_a", {0.0f, 1.0f})
-          .within("depth_b", {0.0f, 1.0f})
-          .within("occluder_b", {0.0f, 1.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_shadowed_light)
+          .within("light", {0.0f, 4.0f})
+          .within({"d_p", "depth_a", "occluder_a", "depth_b", "occluder_b"}, {0.0f, 1.0f})
+          .within("bias", {0.0f, 0.01f})
           .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_texel_transparent),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_case),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_opaque_shadow)
           .within("light", {0.0f, 4.0f})
-          .within("d_p", {0.0f, 1.0f})
+          .within({"d_p", "depth"}, {0.0f, 1.0f})
           .within("bias", {0.0f, 0.01f})
-          .within("depth", {0.0f, 1.0f})
           .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_offset).within("view_normal", unit_vector()).within("strength", {0.0f, 64.0f}),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_rejected),
-      DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_depth).within("alpha_moved", {0.0f, 1.0f}).within("alpha_partner", {0.0f, 1.0f}),
-      DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_mask).within("alpha_moved", {0.0f, 1.0f}).within("alpha_partner", {0.0f, 1.0f}),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_depth).within({"alpha_moved", "alpha_partner"}, {0.0f, 1.0f}),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_mask).within({"alpha_moved", "alpha_partner"}, {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_compose, dst_shade)
           .within("s", {0.0f, 1.0f})
           .within("l", {0.0f, 4.0f})
@@ -344,11 +341,8 @@ inline const std::vector<formula>& formulas() {
           .within("alpha_t", {0.0f, 1.0f})
           .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_compose, dst_compose)
-          .within("o", {0.0f, 1.0f})
-          .within("light_o", {0.0f, 4.0f})
-          .within("t", {0.0f, 1.0f})
-          .within("light_t", {0.0f, 4.0f})
-          .within("ambient", {0.0f, 1.0f})
+          .within({"o", "t", "ambient"}, {0.0f, 1.0f})
+          .within({"light_o", "light_t"}, {0.0f, 4.0f})
           .yields(0.0f, INFINITY),
   };
   return all;

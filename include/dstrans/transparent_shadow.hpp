@@ -33,21 +33,22 @@ DST_FN int dst_shadow_case(float d_p, float bias, float depth_a, vec4 occluder_a
   if (d_min < d) return 1;
   return 2;
 }
-DST_FN vec3 dst_transparent_shadow(vec3 light, float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b,
-                                   vec4 occluder_b) {
+DST_FN vec3 dst_shadowed_light(vec3 light, bool physical, float d_p, float bias, float depth_a, vec4 occluder_a,
+                               float depth_b, vec4 occluder_b) {
   int k = dst_shadow_case(d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
   if (k == 0) return vec3(0.0f);
   if (k == 2) return light;
   vec4 c = dst_shadow_texel_transparent(occluder_a, occluder_b) ? occluder_a : occluder_b;
-  return min(light, vec3(c.x, c.y, c.z)) * (1.0f - c.w);
+  vec3 filtered = physical ? light * vec3(c.x, c.y, c.z) : min(light, vec3(c.x, c.y, c.z));
+  return filtered * (1.0f - c.w);
+}
+DST_FN vec3 dst_transparent_shadow(vec3 light, float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b,
+                                   vec4 occluder_b) {
+  return dst_shadowed_light(light, false, d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
 }
 DST_FN vec3 dst_transmitted_shadow(vec3 light, float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b,
                                    vec4 occluder_b) {
-  int k = dst_shadow_case(d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
-  if (k == 0) return vec3(0.0f);
-  if (k == 2) return light;
-  vec4 c = dst_shadow_texel_transparent(occluder_a, occluder_b) ? occluder_a : occluder_b;
-  return light * vec3(c.x, c.y, c.z) * (1.0f - c.w);
+  return dst_shadowed_light(light, true, d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
 }
 DST_FN vec3 dst_opaque_shadow(vec3 light, float d_p, float bias, float depth) {
   return depth < d_p - bias ? vec3(0.0f) : light;
