@@ -24,8 +24,7 @@ leaks count_leaks(const frame& with_depth, const scene& s, const options& o) {
       if (a >= 1.0f && b >= 1.0f) continue;
       const glm::ivec2 tp = a <= b ? p : q;
       const glm::vec3 n = shader::dst_decode_normal(glm::vec3(at(1, tp)));
-      const glm::vec2 offset = glm::roundEven(shader::dst_refraction_offset(view * n, o.refraction));
-      const glm::ivec2 moved = glm::clamp(p + glm::ivec2(offset), glm::ivec2(0), size - 1);
+      const glm::ivec2 moved = shader::dst_refraction_pixel(p, size, view * n, o.refraction);
       const glm::ivec2 moved_partner = interlace::rows::partner(moved, size);
       const float alpha_moved = at(0, moved).w, alpha_partner = at(0, moved_partner).w;
       const glm::ivec2 behind = alpha_moved < 1.0f ? moved_partner : moved;

@@ -304,6 +304,12 @@ inline const std::vector<formula>& formulas() {
           .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_attenuation, dst_attenuation).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_attenuation, dst_spot_falloff).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_light_reach, dst_light_reach)
+          .within("direction", unit_vector())
+          .within({"position", "p"}, {-100.0f, 100.0f})
+          .within("range", {0.0f, 100.0f})
+          .within({"cos_outer", "cos_inner"}, {0.0f, 1.0f})
+          .yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_transparent_shadow)
           .within("light", {0.0f, 4.0f})
           .within({"d_p", "depth_a", "occluder_a", "depth_b", "occluder_b"}, {0.0f, 1.0f})
@@ -321,13 +327,20 @@ inline const std::vector<formula>& formulas() {
           .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_texel_transparent),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_case),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_depth).within({"d_p"}, {0.0f, 2.0f}).within("bias", {0.0f, 0.01f}).yields(-0.01f, 1.0f),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_opaque_shadow)
           .within("light", {0.0f, 4.0f})
           .within({"d_p", "depth"}, {0.0f, 1.0f})
           .within("bias", {0.0f, 0.01f})
           .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_offset).within("view_normal", unit_vector()).within("strength", {0.0f, 64.0f}),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_shift).within("offset", {-64.0f, 64.0f}),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_pixel)
+          .within("view_normal", unit_vector())
+          .within("strength", {0.0f, 64.0f}),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_rejected),
+      DSTRANS_FORMULA(dst_refraction, dst_refraction_source)
+          .within({"depth_t", "alpha_moved", "depth_moved", "alpha_partner", "depth_partner"}, {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_depth).within({"alpha_moved", "alpha_partner"}, {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_mask).within({"alpha_moved", "alpha_partner"}, {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_compose, dst_shade)

@@ -9,13 +9,19 @@
 // where each term also receives the ambient light and its white specular (spec_intensity times the
 // light buffer's specular).
 //
-//   glm::vec2 offset = dstrans::shader::dst_refraction_offset(view_normal, strength);
+//   glm::ivec2 moved = dstrans::shader::dst_refraction_pixel(pixel, size, view_normal, strength);
+//   int from = dstrans::shader::dst_refraction_source(depth_t, alpha_moved, depth_moved, alpha_partner, depth_partner);
 //   bool leak = dstrans::shader::dst_refraction_rejected(depth_t, depth_o);
 //   glm::vec3 colour = dstrans::shader::dst_compose(opaque, light_o, transparent, light_t, ambient);
 //   glm::vec3 same = dstrans::shader::dst_blend(lit_opaque, lit_transparent, alpha_t);   // colours already lit
 //
-// Choices: screen y grows downwards while view y grows upwards, so the offset's y is negated; equal depths
-// are not rejected (a surface does not leak into itself); strength 0 gives no offset, and the compose
+// Choices (the cases of tests/hard_cases.jsonl): screen y grows downwards while view y grows upwards, so
+// the offset's y is negated; the offset rounds to the nearest pixel, halves up (GLSL's round() may go
+// either way); a sample pushed off the image is taken at its edge (clamped per axis), a NaN offset does
+// not move it; equal depths are not rejected (a surface does not leak into itself); when the moved pixel
+// and its partner both hold glass there is no opaque sample to refract and the background S_b stays
+// (dst_refraction_source 0; 1 takes the moved pixel, 2 its partner); the cleared background (depth 1,
+// black) behind glass is refracted like any opaque surface; strength 0 gives no offset, and the compose
 // is then exactly the de-interlaced blend.
 // The moved sample is taken when one of the moved pixel and its partner is opaque (alpha_moved,
 // alpha_partner) and, by depth, it lies behind the glass; forward rendering without depth can only ask
@@ -31,7 +37,24 @@ DSTRANS_SHARED(dst_refraction,
 DST_FN vec2 dst_refraction_offset(vec3 view_normal, float strength) {
   return vec2(view_normal.x, -view_normal.y) * strength;
 }
+DST_FN int dst_refraction_shift(int x, float offset, int extent) {
+  if (extent < 1) return 0;
+  float moved = float(x) + floor(offset + 0.5f);
+  if (isnan(moved)) return x;
+  if (moved >= float(extent - 1)) return extent - 1;
+  return moved > 0.0f ? int(moved) : 0;
+}
+DST_FN ivec2 dst_refraction_pixel(ivec2 p, ivec2 size, vec3 view_normal, float strength) {
+  vec2 o = dst_refraction_offset(view_normal, strength);
+  return ivec2(dst_refraction_shift(p.x, o.x, size.x), dst_refraction_shift(p.y, o.y, size.y));
+}
 DST_FN bool dst_refraction_rejected(float depth_t, float depth_o) { return depth_t > depth_o; }
+DST_FN int dst_refraction_source(float depth_t, float alpha_moved, float depth_moved, float alpha_partner,
+                                 float depth_partner) {
+  if (alpha_moved >= 1.0f) return dst_refraction_rejected(depth_t, depth_moved) ? 0 : 1;
+  if (alpha_partner >= 1.0f) return dst_refraction_rejected(depth_t, depth_partner) ? 0 : 2;
+  return 0;
+}
 DST_FN bool dst_refraction_accepted_by_depth(float alpha_moved, float alpha_partner, float depth_t, float depth_o) {
   return max(alpha_moved, alpha_partner) >= 1.0f && !dst_refraction_rejected(depth_t, depth_o);
 }

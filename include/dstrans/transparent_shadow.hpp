@@ -10,10 +10,22 @@
 //
 //   glm::vec3 lit = dstrans::shader::dst_transparent_shadow(light, d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
 //
-// Choices: equal alphas make the texel itself the transparent candidate; the bias moves the point
-// towards the light (a positive bias removes self-shadowing acne); dst_opaque_shadow is the plain
-// shadow map the thesis compares with, looked up at the texel only. dst_shadow_case says which line of
-// Eq. 3.1 applies (0 blocked, 1 through the transparent candidate, 2 lit) for both transmittances.
+// Choices, each a case of tests/hard_cases.jsonl:
+// - equal alphas make the texel itself the transparent candidate;
+// - two opaque samples (both alphas 1): the texel alone decides, as a plain shadow map does. The partner
+//   is a neighbour's surface, not a layer behind this one; taking its depth as d_maxA would grow every
+//   opaque shadow by a row;
+// - two transparent samples (the predicate "none", or a 1-row map) know no opaque occluder: light is
+//   filtered by the candidate where it lies in front of the point, never blocked;
+// - alpha below 1 is transparent, even one RGBA8 code below (254/255 lets 1/255 of the light through);
+//   alpha 0 glass still filters light by min(I_L, C), which is Eq. 3.2 as written;
+// - the bias moves the point towards the light (a positive bias removes self-shadowing acne); a point at
+//   exactly an occluder's depth is not behind it;
+// - a point beyond the far plane (d_P - b > 1, or NaN) is taken at the far plane: the cleared map (depth
+//   1) does not shadow it, occluders the map holds do;
+// - dst_opaque_shadow is the plain shadow map the thesis compares with, looked up at the texel only.
+// dst_shadow_case says which line of Eq. 3.1 applies (0 blocked, 1 through the transparent candidate, 2
+// lit) for both transmittances.
 // Eq. 3.2's min(I_L, C) is the default, as in the thesis: it only darkens a channel where the light is
 // brighter than the glass, so a light of intensity 1 or more through glass of colour C gives C(1 - alpha)
 // whatever its brightness, and dim light passes glass almost uncoloured. dst_transmitted_shadow offers the
@@ -24,12 +36,17 @@
 
 DSTRANS_SHARED(dst_transparent_shadow,
 DST_FN bool dst_shadow_texel_transparent(vec4 occluder_a, vec4 occluder_b) { return occluder_a.w <= occluder_b.w; }
+DST_FN float dst_shadow_depth(float d_p, float bias) {
+  float d = d_p - bias;
+  return isnan(d) || d >= 1.0f ? 1.0f : d;
+}
 DST_FN int dst_shadow_case(float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b, vec4 occluder_b) {
+  float d = dst_shadow_depth(d_p, bias);
   bool a_transparent = dst_shadow_texel_transparent(occluder_a, occluder_b);
+  if (a_transparent && occluder_a.w >= 1.0f) return depth_a < d ? 0 : 2;
   float d_min = a_transparent ? depth_a : depth_b;
   float d_max = a_transparent ? depth_b : depth_a;
-  float d = d_p - bias;
-  if (d_max < d) return 0;
+  if (max(occluder_a.w, occluder_b.w) >= 1.0f && d_max < d) return 0;
   if (d_min < d) return 1;
   return 2;
 }
@@ -51,6 +68,6 @@ DST_FN vec3 dst_transmitted_shadow(vec3 light, float d_p, float bias, float dept
   return dst_shadowed_light(light, true, d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
 }
 DST_FN vec3 dst_opaque_shadow(vec3 light, float d_p, float bias, float depth) {
-  return depth < d_p - bias ? vec3(0.0f) : light;
+  return depth < dst_shadow_depth(d_p, bias) ? vec3(0.0f) : light;
 }
 )

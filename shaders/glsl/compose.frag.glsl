@@ -21,17 +21,13 @@ void main() {
   // Refraction: the sample moved by the transparent surface's screen-space normal, or the layer behind
   // it when it holds glass too; a sample in front of the glass would leak into it, so the background
   // stays then.
-  vec3 view_normal = mat3(frame.view) * t.normal;
-  ivec2 moved = clamp(p + ivec2(round(dst_refraction_offset(view_normal, frame.params.x))), ivec2(0), size - 1);
+  ivec2 moved = dst_refraction_pixel(p, size, mat3(frame.view) * t.normal, frame.params.x);
   dst_surface r = dst_gbuffer_read(moved);
-  dst_light_sample light_r = dst_light_read(moved);
-  if (r.alpha < 1.0f) {
-    r = dst_other(moved);
-    light_r = dst_other_light(moved);
-  }
-  if (r.alpha >= 1.0f && !dst_refraction_rejected(t.depth, r.depth)) {
-    o = r;
-    light_o = light_r;
+  dst_surface r2 = r.alpha < 1.0f ? dst_other(moved) : r;  // the partner only where it is needed
+  int from = dst_refraction_source(t.depth, r.alpha, r.depth, r2.alpha, r2.depth);
+  if (from != 0) {
+    o = from == 1 ? r : r2;
+    light_o = from == 1 ? dst_light_read(moved) : dst_other_light(moved);
   }
   colour = vec4(dst_compose(o, light_o, t, light_t, ambient), 1.0f);
 }

@@ -23,7 +23,7 @@ void main() {
   vec4 t = a_transparent ? a : b;
   vec4 o = a_transparent ? b : a;
   vec3 view_normal = mat3(frame.view) * dst_decode_normal(texelFetch(dst_forward_normal, tp, 0).xyz);
-  ivec2 moved = clamp(p + ivec2(round(dst_refraction_offset(view_normal, frame.params.x))), ivec2(0), size - 1);
+  ivec2 moved = dst_refraction_pixel(p, size, view_normal, frame.params.x);
   ivec2 moved_partner = dst_interlace_partner(moved, size);
   vec4 r = texelFetch(dst_forward_colour, moved, 0), r2 = texelFetch(dst_forward_colour, moved_partner, 0);
   float alpha_moved = r.w, alpha_partner = r2.w;

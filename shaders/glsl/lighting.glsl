@@ -28,18 +28,11 @@ vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
 
 // Light `l` at world point `p` with unit normal `n` and Phong exponent `spec_power`, seen from the camera.
 dst_light_sample dst_light_at_point(dst_light_data l, vec3 p, vec3 n, float spec_power) {
-  vec3 light = l.colour_cos_outer.xyz;
-  vec3 to_light = -l.direction_kind.xyz;
-  float kind = l.direction_kind.w;
-  if (kind > 0.5f) {
-    vec3 d = l.position_range.xyz - p;
-    float distance = length(d);
-    to_light = d / max(distance, 1e-6f);
-    light *= dst_attenuation(distance, l.position_range.w);
-    if (kind > 1.5f) light *= dst_spot_falloff(dot(-to_light, l.direction_kind.xyz), l.colour_cos_outer.w, l.cos_inner.x);
-  }
+  vec4 reach = dst_light_reach(int(l.direction_kind.w + 0.5f), l.position_range.xyz, l.direction_kind.xyz,
+                               l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, p);
+  vec3 light = l.colour_cos_outer.xyz * reach.w;
 #if defined(DST_OPAQUE_SHADOWS) || defined(DST_TRANSPARENT_SHADOWS)
   if (l.cos_inner.y > 0.5f) light = dst_shadowed(light, p, l);
 #endif
-  return dst_phong(n, to_light, normalize(frame.camera_position.xyz - p), spec_power, light);
+  return dst_phong(n, reach.xyz, normalize(frame.camera_position.xyz - p), spec_power, light);
 }

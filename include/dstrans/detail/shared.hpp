@@ -19,8 +19,9 @@
 // - out and inout parameters are DST_OUT(T) and DST_INOUT(T); every function is DST_FN;
 // - integer arithmetic on non-negative values only (`%` and `>>` of negatives differ), and no signed
 //   overflow (undefined in C++);
-// - where a NaN can arrive, decide it with a comparison (`!(x > 0.0f)`) before min, max, clamp or
-//   smoothstep: GLSL leaves them undefined for NaN, and GPUs and GLM answer differently.
+// - where a NaN can arrive, decide it with isnan() before any comparison, min, max, clamp or smoothstep:
+//   GLSL leaves them undefined for NaN, GPUs and GLM answer differently, and Mesa's GL compiler folds
+//   `!(x > 0.0f)` followed by a select into code that keeps the NaN (measured: dst_attenuation).
 // The stringified text loses comments and line breaks; dstrans::glsl re-breaks it for reading and
 // maps compiler errors back to the line of the DSTRANS_SHARED block.
 #pragma once
