@@ -29,7 +29,8 @@ using json = nlohmann::ordered_json;
 const char* const usage =
     "usage: dstrans eval --backend cpu|gl|vk      JSON lines {\"fn\": NAME, \"args\": {...}} on stdin\n"
     "       dstrans eval --list [--json]          every formula, its arguments and result\n"
-    "NaN and infinities are written (and may be given) as \"nan\", \"inf\", \"-inf\".\n";
+    "NaN and infinities are written (and may be given) as \"nan\", \"inf\", \"-inf\". An input's \"case\"\n"
+    "is echoed in its output line; other keys are ignored (tests/hard_cases.jsonl feeds straight in).\n";
 
 // A type as `eval --list --json` names it: a string, or an object of fields for a struct.
 json type_json(const value_type& t) {
@@ -205,6 +206,7 @@ int eval(std::vector<std::string> args) {
     struct call {
       const formula* f = nullptr;
       json fn = nullptr;
+      json label = nullptr;  // the input's "case", echoed so that a file of cases reads back by name
       std::string error;
       std::size_t index = 0;  // among the calls of f
     };
@@ -218,6 +220,7 @@ int eval(std::vector<std::string> args) {
         const json in = json::parse(line);
         if (!in.is_object() || !in.contains("fn") || !in["fn"].is_string()) throw bad_value{"expected {\"fn\": NAME, \"args\": {...}}"};
         c.fn = in["fn"];
+        if (in.contains("case")) c.label = in["case"];
         c.f = find_formula(in["fn"].get<std::string>());
         if (!c.f) throw bad_value{"unknown formula '" + in["fn"].get<std::string>() + "' (see dstrans eval --list)"};
         const json a = in.contains("args") ? in["args"] : json::object();
@@ -248,6 +251,7 @@ int eval(std::vector<std::string> args) {
     for (auto& [f, batch] : batches) results.emplace(f, (*run)(*f, batch.first, batch.second));
     for (const call& c : calls) {
       json out{{"fn", c.fn}};
+      if (!c.label.is_null()) out["case"] = c.label;
       if (!c.f) {
         out["error"] = c.error;
       } else if (const auto& r = results.at(c.f); !r) {

@@ -60,8 +60,9 @@ frame_block camera_frame(const scene& s, const options& o) {
 frame_block light_frame(const scene& s, const light& l, const options& o) {
   frame_block f = camera_frame(s, o);
   // The shadow map covers the outer cone; a 90-degree spot would need a 180-degree frustum, so
-  // shadow maps stop at 85 degrees and what lies outside them is lit unshadowed.
-  const float half = std::min(l.outer_angle, 85.0f);
+  // shadow maps stop at 85 degrees and what lies outside them is lit unshadowed. A 0-degree spot lights
+  // only its axis, which a frustum of 1 degree holds (one of 0 degrees has an infinite projection).
+  const float half = std::clamp(l.outer_angle, 0.5f, 85.0f);
   f.view_proj = glm::perspectiveRH_ZO(glm::radians(2.0f * half), 1.0f, std::max(l.range * 1e-3f, 0.01f), l.range) * spot_view(l);
   return f;
 }

@@ -31,6 +31,9 @@ struct options {
   // Light through glass: the thesis's min(I_L, C) (Eq. 3.2), or the physically based I_L C.
   bool physical_transmittance = false;
   int frames = 1;  // frames rendered with the same resources; times are their medians
+  // Light buffers and the final image in RGBA32F instead of RGBA8: additive light does not saturate at 1
+  // and a NaN or infinity stays visible instead of being stored as 0 (for checking a frame's numbers).
+  bool float_targets = false;
 };
 
 // What a frame of `s` with options `o` consists of, derived once for both backends.

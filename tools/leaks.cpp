@@ -15,7 +15,7 @@ leaks count_leaks(const frame& with_depth, const scene& s, const options& o) {
   const glm::ivec2 size{o.width, o.height};
   const glm::mat3 view(camera_frame(s, o).view);
   auto at = [&](int target, glm::ivec2 p) {
-    return decode(forward_targets(true)[std::size_t(target)].fmt, with_depth.lit[std::size_t(target)][std::size_t(p.y * size.x + p.x)]);
+    return decode(forward_targets(true, o.float_targets)[std::size_t(target)].fmt, with_depth.lit[std::size_t(target)][std::size_t(p.y * size.x + p.x)]);
   };
   for (int y = 0; y < size.y; ++y)
     for (int x = 0; x < size.x; ++x) {

@@ -64,50 +64,63 @@ result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode) {
   return scene_vertex(dir, std::move(p));
 }
 
-result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, bool physical_transmittance) {
+std::vector<target_desc> light_targets(bool float_targets) {
+  return float_targets ? describe<float_light_buffer>() : describe<thesis_light_buffer>();
+}
+
+void add_light_layout(glsl::source& src, const std::string& name, bool float_targets, const glsl::layout_options& o) {
+  if (float_targets) glsl::add_layout<float_light_buffer>(src, name, o);
+  else glsl::add_layout<thesis_light_buffer>(src, name, o);
+}
+
+target_desc final_target_desc(bool float_targets) {
+  return {float_targets ? format::rgba32f : format::rgba8, {"r", "g", "b", "a"}};
+}
+
+result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, const options& o) {
   pass_sources p;
   if (volume) p.vertex.add("#define DST_LIGHT_VOLUME\n", __FILE__, __LINE__);
   p.vertex.add_shared(text::dst_fullscreen);
   if (auto ok = finish(p.vertex, dir, {"light.vert.glsl"}); !ok) return failure{ok.error()};
   p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
-  if (physical_transmittance) p.fragment.add("#define DST_TRANSMITTANCE\n", __FILE__, __LINE__);
+  if (o.physical_transmittance) p.fragment.add("#define DST_TRANSMITTANCE\n", __FILE__, __LINE__);
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = gbuffer_binding;
   glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
   glsl::layout_options write;
   write.sides = glsl::side::write;
-  glsl::add_layout<thesis_light_buffer>(p.fragment, "light", write);
+  add_light_layout(p.fragment, "light", o.float_targets, write);
   if (mode != shadow_mode::off) add_shadow_layout(p.fragment, mode, glsl::side::read);
   glsl::add_interlace<I>(p.fragment);
   if (auto ok = finish(p.fragment, dir, {"lighting.glsl", "light.frag.glsl"}); !ok) return failure{ok.error()};
   return p;
 }
 
-result<pass_sources> compose_pass(const std::string& dir, technique method) {
+result<pass_sources> compose_pass(const std::string& dir, const options& o) {
   pass_sources p{glsl::fullscreen_vertex_shader(), {}};
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = gbuffer_binding;
   glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
   read.first_binding = light_binding;
-  glsl::add_layout<thesis_light_buffer>(p.fragment, "light", read);
+  add_light_layout(p.fragment, "light", o.float_targets, read);
   std::string other = "interlaced.glsl";
-  if (method == technique::interlaced) {
+  if (o.method == technique::interlaced) {
     glsl::add_interlace<I>(p.fragment);
   } else {
     read.first_binding = gbuffer2_binding;
     glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer2", read);
     read.first_binding = light2_binding;
-    glsl::add_layout<thesis_light_buffer>(p.fragment, "light2", read);
+    add_light_layout(p.fragment, "light2", o.float_targets, read);
     other = "peeled.glsl";
   }
   if (auto ok = finish(p.fragment, dir, {other, "compose.frag.glsl"}); !ok) return failure{ok.error()};
   return p;
 }
 
-std::vector<target_desc> forward_targets(bool with_depth) {
-  std::vector<target_desc> t{{format::rgba8, {"colour.r", "colour.g", "colour.b", "alpha"}},
+std::vector<target_desc> forward_targets(bool with_depth, bool float_targets) {
+  std::vector<target_desc> t{{float_targets ? format::rgba32f : format::rgba8, {"colour.r", "colour.g", "colour.b", "alpha"}},
                              {format::rgb10a2, {"normal.x", "normal.y", "normal.z", "unused"}}};
   if (with_depth) t.push_back({format::r32f, {"depth"}});
   return t;

@@ -12,6 +12,14 @@
 
 namespace dstrans::render {
 
+// Table 3.2's fields in RGBA32F, for options::float_targets.
+using float_light_buffer = layout<light_sample, target<format::rgba32f, field::light, field::specular>>;
+// The light buffer's targets, and its layout's GLSL, for the options' precision.
+std::vector<target_desc> light_targets(bool float_targets);
+void add_light_layout(glsl::source& src, const std::string& name, bool float_targets, const glsl::layout_options& o);
+// The final image's target.
+target_desc final_target_desc(bool float_targets);
+
 // Table 3.3 for transparent shadows; a plain depth map for opaque ones.
 using opaque_shadow_map = layout<surface, target<format::r32f, field::depth>>;
 
@@ -32,14 +40,14 @@ struct pass_sources {
 // `dir` is the folder of the pass shaders (shaders/glsl).
 result<pass_sources> gbuffer_pass(const std::string& dir, layer which);
 result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode);
-result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, bool physical_transmittance);
-result<pass_sources> compose_pass(const std::string& dir, technique method);
+result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, const options& o);
+result<pass_sources> compose_pass(const std::string& dir, const options& o);
 
 // The forward renderer's passes: ambient (colour, normal, depth), one light, and the blend.
 enum class forward_stage { ambient, light, blend };
 result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, bool with_depth, shadow_mode mode,
                                   bool physical_transmittance = false);
-// Its targets: lit colour and alpha, the normal, and with depth the window depth.
-std::vector<target_desc> forward_targets(bool with_depth);
+// Its targets: lit colour and alpha (RGBA32F with float targets), the normal, and with depth the window depth.
+std::vector<target_desc> forward_targets(bool with_depth, bool float_targets = false);
 
 }  // namespace dstrans::render

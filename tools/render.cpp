@@ -1,4 +1,5 @@
 // dstrans render: one frame of a scene on a backend, with its buffers and pass times (DESIGN.md).
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,7 @@ const char* const usage =
     "       [--refraction PIXELS] [--shadows off|opaque|transparent] [--shadow-bias DEPTH] [--shadow-size N]\n"
     "       [--frames N]   render N frames with the same resources; pass times are their medians\n"
     "       [--transmittance thesis|physical]   light through glass: min(I_L, C) (Eq. 3.2) or I_L C\n"
+    "       [--float-targets]   light buffers and the final image in RGBA32F: no saturation, NaN kept\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
@@ -57,6 +59,9 @@ int render(std::vector<std::string> args) {
     if (shadows == "off") o.shadows = render::shadow_mode::off;
     else if (shadows == "opaque") o.shadows = render::shadow_mode::opaque;
     else if (shadows != "transparent") throw usage_error{"--shadows must be off, opaque or transparent, not '" + shadows + "'"};
+    const auto flag = std::find(args.begin(), args.end(), "--float-targets");
+    o.float_targets = flag != args.end();
+    if (o.float_targets) args.erase(flag);
     if (args.size() != 1) throw usage_error{"render takes one scene file"};
     if (out.empty()) throw usage_error{"render needs --out DIR"};
     if (technique == "peeling") o.method = render::technique::peeling;

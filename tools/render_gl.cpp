@@ -71,14 +71,14 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       if (!p) return failure{p.error()};
       gbuffer_progs.push_back(*p);
     }
-    auto c = r.program(compose_pass(shader_dir, o.method), "compose pass");
+    auto c = r.program(compose_pass(shader_dir, o), "compose pass");
     if (!c) return failure{c.error()};
     compose_prog = *c;
     // Light programs by [shadowed][volume].
     for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed)
       for (int vol = 0; vol < 2; ++vol) {
         auto p =
-            r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1, o.physical_transmittance),
+            r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1, o),
                       std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen"));
         if (!p) return failure{p.error()};
         light_progs[shadowed][vol] = *p;
@@ -151,7 +151,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     if (!g) return failure{g.error()};
     r.targets.push_back(*g);
     gbuffers.push_back(*g);
-    auto l = gl::make_targets(describe<thesis_light_buffer>(), o.width, o.height, "light buffer" + suffix, false);
+    auto l = gl::make_targets(light_targets(o.float_targets), o.width, o.height, "light buffer" + suffix, false);
     if (!l) return failure{l.error()};
     r.targets.push_back(*l);
     light_buffers.push_back(*l);
@@ -160,7 +160,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   gl::targets lit;
   GLuint lit_colour_only = 0;
   if (forward) {
-    auto t = gl::make_targets(forward_targets(with_depth), o.width, o.height, "forward", true);
+    auto t = gl::make_targets(forward_targets(with_depth, o.float_targets), o.width, o.height, "forward", true);
     if (!t) return failure{t.error()};
     lit = *t;
     r.targets.push_back(lit);
@@ -171,7 +171,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     gl::label(GL_FRAMEBUFFER, lit_colour_only, "forward light passes");
   }
   auto final_target =
-      gl::make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
+      gl::make_targets({final_target_desc(o.float_targets)}, o.width, o.height, "final", false);
   if (!final_target) return failure{final_target.error()};
   r.targets.push_back(*final_target);
   gl::targets shadow_map;
@@ -357,13 +357,15 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     out.light_buffer = gl::read_texels(light_buffers[0], 0);
   } else {
     for (std::size_t t = 0; t < lit.textures.size(); ++t) out.lit.push_back(gl::read_texels(lit, int(t)));
-    out.buffers.push_back({"colour", to_image(gl::read_texels(lit, 0), format::rgba8, w, h, view_as::rgb)});
+    out.buffers.push_back({"colour", to_image(gl::read_texels(lit, 0), lit.formats[0], w, h, view_as::rgb)});
     out.buffers.push_back({"normals", to_image(gl::read_texels(lit, 1), format::rgb10a2, w, h, view_as::rgb)});
     if (with_depth)
       out.buffers.push_back({"depth", to_image(gl::read_texels(lit, 2), format::r32f, w, h, view_as::depth,
                                                s.view.near_plane, s.view.far_plane)});
   }
-  out.final_image = to_image(gl::read_texels(*final_target, 0), format::rgba8, w, h, view_as::rgb);
+  out.final_texels = gl::read_texels(*final_target, 0);
+  const format final_format = final_target_desc(o.float_targets).fmt, light_format = light_targets(o.float_targets)[0].fmt;
+  out.final_image = to_image(out.final_texels, final_format, w, h, view_as::rgb);
   for (int k = 0; k < layers; ++k) {
     const std::string suffix = k ? "_2" : "";
     const gl::targets &gb = gbuffers[std::size_t(k)], &lb = light_buffers[std::size_t(k)];
@@ -371,8 +373,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     out.buffers.push_back({"normals" + suffix, to_image(gl::read_texels(gb, 1), format::rgb10a2, w, h, view_as::rgb)});
     out.buffers.push_back({"depth" + suffix, to_image(gl::read_texels(gb, 3), format::r32f, w, h, view_as::depth,
                                                       s.view.near_plane, s.view.far_plane)});
-    out.buffers.push_back({"light" + suffix, to_image(gl::read_texels(lb, 0), format::rgba8, w, h, view_as::rgb)});
-    out.buffers.push_back({"specular" + suffix, to_image(gl::read_texels(lb, 0), format::rgba8, w, h, view_as::alpha)});
+    out.buffers.push_back({"light" + suffix, to_image(gl::read_texels(lb, 0), light_format, w, h, view_as::rgb)});
+    out.buffers.push_back({"specular" + suffix, to_image(gl::read_texels(lb, 0), light_format, w, h, view_as::alpha)});
   }
   if (!shadow_picture.empty())
     out.buffers.push_back(

@@ -136,7 +136,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   const int layers = plan.layers;
   vk::targets lit, lit_colour_only;
   if (forward) {
-    auto t = dev.make_targets(forward_targets(with_depth), o.width, o.height, "forward", true);
+    auto t = dev.make_targets(forward_targets(with_depth, o.float_targets), o.width, o.height, "forward", true);
     if (!t) return failure{t.error()};
     lit = *t;
     r.targets.push_back(lit);
@@ -149,13 +149,13 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!g) return failure{g.error()};
     r.targets.push_back(*g);
     gbuffers.push_back(*g);
-    auto l = dev.make_targets(describe<thesis_light_buffer>(), o.width, o.height, "light buffer" + suffix, false);
+    auto l = dev.make_targets(light_targets(o.float_targets), o.width, o.height, "light buffer" + suffix, false);
     if (!l) return failure{l.error()};
     r.targets.push_back(*l);
     light_buffers.push_back(*l);
   }
   auto final_target =
-      dev.make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, o.width, o.height, "final", false);
+      dev.make_targets({final_target_desc(o.float_targets)}, o.width, o.height, "final", false);
   if (!final_target) return failure{final_target.error()};
   r.targets.push_back(*final_target);
   vk::targets shadow_map;
@@ -214,7 +214,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     for (int vol = 0; vol < 2; ++vol) {
       const std::string name =
           std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen");
-      auto sh = compile(dev, light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1, o.physical_transmittance), name);
+      auto sh = compile(dev, light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1, o), name);
       if (!sh) return failure{sh.error()};
       light_shaders[shadowed][vol] = *sh;
       vk::pipeline_state st;
@@ -263,7 +263,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   auto compose_shaders =
       forward ? compile(dev, forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off),
                         "forward blend pass")
-              : compile(dev, compose_pass(shader_dir, o.method), "compose pass");
+              : compile(dev, compose_pass(shader_dir, o), "compose pass");
   if (!compose_shaders) return failure{compose_shaders.error()};
   auto compose_pipe = dev.make_graphics_pipeline(*compose_shaders->vertex, *compose_shaders->fragment,
                                                  final_target->formats, "compose pass");
@@ -501,12 +501,14 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!light_texels) return failure{light_texels.error()};
     out.light_buffer = *light_texels;
   }
-  auto final_image = picture(*final_target, 0, format::rgba8, w, h, view_as::rgb);
-  if (!final_image) return failure{final_image.error()};
-  out.final_image = *final_image;
+  auto final_texels = dev.read_texels(*final_target, 0);
+  if (!final_texels) return failure{final_texels.error()};
+  out.final_texels = *final_texels;
+  out.final_image = to_image(out.final_texels, final_target_desc(o.float_targets).fmt, w, h, view_as::rgb);
+  const format light_format = light_targets(o.float_targets)[0].fmt;
   std::vector<std::tuple<std::string, const vk::targets*, int, format, view_as>> wanted;
   if (forward) {
-    wanted = {{"colour", &lit, 0, format::rgba8, view_as::rgb}, {"normals", &lit, 1, format::rgb10a2, view_as::rgb}};
+    wanted = {{"colour", &lit, 0, lit.formats[0], view_as::rgb}, {"normals", &lit, 1, format::rgb10a2, view_as::rgb}};
     if (with_depth) wanted.push_back({"depth", &lit, 2, format::r32f, view_as::depth});
   }
   for (int k = 0; k < layers; ++k) {
@@ -515,8 +517,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     wanted.insert(wanted.end(), {{"diffuse" + suffix, gb, 0, format::rgba8, view_as::rgb},
                                  {"normals" + suffix, gb, 1, format::rgb10a2, view_as::rgb},
                                  {"depth" + suffix, gb, 3, format::r32f, view_as::depth},
-                                 {"light" + suffix, lb, 0, format::rgba8, view_as::rgb},
-                                 {"specular" + suffix, lb, 0, format::rgba8, view_as::alpha}});
+                                 {"light" + suffix, lb, 0, light_format, view_as::rgb},
+                                 {"specular" + suffix, lb, 0, light_format, view_as::alpha}});
   }
   for (const auto& [name, t, index, f, how] : wanted) {
     auto img = picture(*t, index, f, w, h, how);

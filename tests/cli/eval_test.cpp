@@ -4,7 +4,9 @@
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include <unistd.h>
@@ -100,7 +102,7 @@ bool same(const json& a, const json& b, int exponent) {
       if (!same(*ia, *ib, exponent)) return false;
     return true;
   }
-  if (a.is_boolean() || a.is_number_integer()) return a == b;
+  if (a.is_boolean() || (a.is_number_integer() && !b.is_number_float())) return a == b;
   const float x = as_float(a), y = as_float(b);
   if (std::isnan(x) || std::isinf(x)) return std::isnan(x) ? std::isnan(y) : x == y;
   return std::isfinite(y) && std::fabs(x - y) <= std::ldexp(std::fmax(1.0f, std::fabs(x)), exponent);
@@ -184,4 +186,36 @@ TEST_CASE("eval answers bad lines with an error line, in order, and bad options 
   CHECK(run("eval --backend metal", "").status == 2);
   CHECK(run("eval", "").status == 2);
   CHECK(run("eval --json", "").status == 2);
+}
+
+// Issue 6: each hard case of tests/hard_cases.jsonl, fed to `dstrans eval` as it is, returns the value
+// written beside it, on every backend (within 2^-16 of max(1, |value|), the transcendental tolerance).
+TEST_CASE("every hard case returns its documented value on cpu, gl and vk", "[cli][eval][hard_cases]") {
+  std::ifstream file(std::string(DSTRANS_SOURCE_DIR) + "/tests/hard_cases.jsonl");
+  REQUIRE(file);
+  const std::string input((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const auto cases = lines(input);
+  REQUIRE(cases.size() >= 60);
+  std::set<std::string> names;
+  for (const json& c : cases) {
+    INFO(c.dump());
+    REQUIRE(c.contains("expect"));
+    CHECK(names.insert(c["case"].get<std::string>()).second);  // a case is found by its name
+  }
+  for (const char* backend : {"cpu", "gl", "vk"}) {
+    const auto r = run(std::string("eval --backend ") + backend, input);
+    if (r.status == 1 && std::string(backend) != "cpu") {
+      WARN("skipped " << backend << ": " << r.out);
+      continue;
+    }
+    REQUIRE(r.status == 0);
+    const auto results = lines(r.out);
+    REQUIRE(results.size() == cases.size());
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      INFO(backend << ": " << cases[i]["case"].get<std::string>() << ": got " << results[i].dump());
+      CHECK(results[i]["case"] == cases[i]["case"]);
+      REQUIRE(results[i].contains("result"));
+      CHECK(same(cases[i]["expect"], results[i]["result"], -16));
+    }
+  }
 }
