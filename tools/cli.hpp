@@ -20,6 +20,7 @@ int to_int(const std::string& text, int lo, int hi, const std::string& what);
 // Subcommands: each takes the arguments after its name and returns the exit code.
 int gen(std::vector<std::string> args);
 int eval(std::vector<std::string> args);
+int plan(std::vector<std::string> args);
 int render(std::vector<std::string> args);
 int bench(std::vector<std::string> args);
 

@@ -35,9 +35,24 @@ volume volume_of(const scene& s, const light& l) {
 }
 
 frame_plan plan_of(const scene& s, const options& o) {
-  const bool any = std::any_of(s.lights.begin(), s.lights.end(), [](const light& l) { return l.shadows && l.kind == light_kind::spot; });
   frame_plan p{};
-  p.shadows = any ? o.shadows : shadow_mode::off;
+  effects e = effects_of(scene_features(s));
+  e.bits |= o.force.bits;
+  if (o.refraction <= 0.0f) e = e.without(effect::refraction);
+  if (o.shadows != shadow_mode::transparent) e = e.without(effect::transparent_shadows);
+  if (o.shadows == shadow_mode::off) e = e.without(effect::shadows);
+  p.on = completed(e);
+  p.pipeline = plan_pipeline(p.on);
+  p.shadows = !p.on.has(effect::shadows)                ? shadow_mode::off
+              : p.on.has(effect::transparent_shadows) ? shadow_mode::transparent
+                                                      : shadow_mode::opaque;
+  // A light whose cone reaches no glass looks its map up plainly, unless the transparent lookup is forced.
+  for (const light& l : s.lights)
+    p.lookups.push_back(!casts_shadows(l) || p.shadows == shadow_mode::off ? shadow_mode::off
+                        : p.shadows == shadow_mode::transparent &&
+                                (sees_transparency(s, l) || o.force.has(effect::transparent_shadows))
+                            ? shadow_mode::transparent
+                            : shadow_mode::opaque);
   p.forward = is_forward(o.method);
   p.forward_depth = o.method == technique::forward_depth;
   p.peeling = o.method == technique::peeling;

@@ -7,6 +7,7 @@
 
 #include <dstrans/interlace.hpp>
 #include <dstrans/light_mesh.hpp>
+#include <dstrans/pipeline.hpp>
 #include <dstrans/scene.hpp>
 
 namespace dstrans::render {
@@ -34,16 +35,31 @@ struct options {
   // Light buffers and the final image in RGBA32F instead of RGBA8: additive light does not saturate at 1
   // and a NaN or infinity stays visible instead of being stored as 0 (for checking a frame's numbers).
   bool float_targets = false;
+  // Effects planned even where the scene does not call for them (the full pipeline, for comparisons).
+  effects force;
 };
 
-// What a frame of `s` with options `o` consists of, derived once for both backends.
+// What a frame of `s` with options `o` consists of, derived once for both backends from the effects the
+// scene calls for (dstrans::scene_features), less those the options turn off, plus options::force.
 struct frame_plan {
-  shadow_mode shadows;  // off unless a spot light casts shadows and the options ask for them
+  effects on;
+  pipeline_plan pipeline;  // the passes and targets of `on` (dstrans plan prints it)
+  shadow_mode shadows;     // the shadow map: off, opaque (depth), transparent (depth and colour)
+  std::vector<shadow_mode> lookups;  // per light: no shadow, the plain lookup, or Eq. 3.1's
   bool forward, forward_depth, peeling;
-  int layers;           // G-buffers (and light buffers): 0 forward, 2 peeling, 1 interlaced
-  bool shadowed(const light& l) const { return shadows != shadow_mode::off && l.shadows && l.kind == light_kind::spot; }
+  int layers;              // G-buffers (and light buffers): 0 forward, 2 peeling, 1 interlaced
+  bool uses(shadow_mode lookup) const {
+    for (shadow_mode m : lookups)
+      if (m == lookup) return true;
+    return false;
+  }
 };
 frame_plan plan_of(const scene& s, const options& o);
+constexpr shadow_mode all_lookups[] = {shadow_mode::off, shadow_mode::opaque, shadow_mode::transparent};
+// How programs and pipelines of a lookup are labelled: "", " opaque shadows", " transparent shadows".
+inline const char* lookup_label(shadow_mode m) {
+  return m == shadow_mode::off ? "" : m == shadow_mode::opaque ? " opaque shadows" : " transparent shadows";
+}
 
 struct frame_block {
   glm::mat4 view_proj, inv_view_proj, view;

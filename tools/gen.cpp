@@ -1,5 +1,7 @@
 // dstrans gen: prints the GLSL that the templates generate, ready for glslangValidator as it is.
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <string>
@@ -8,6 +10,8 @@
 #include <dstrans/dstrans.hpp>
 
 #include "cli.hpp"
+#include "passes.hpp"
+#include "scene_json.hpp"
 
 namespace dstrans::cli {
 
@@ -16,6 +20,8 @@ namespace {
 const char* const usage =
     "usage: dstrans gen gbuffer <layout> [--side write|read|both] [--first-location N] [--first-binding N]\n"
     "       dstrans gen interlace <predicate>\n"
+    "       dstrans gen pipeline <scene.json> [--out DIR]   every shader the scene's pipeline compiles; with\n"
+    "                                       --out one file each (<pass>.vert, <pass>.frag), else all printed\n"
     "layouts:    thesis (Table 3.1), light (Table 3.2), shadow (Table 3.3)\n"
     "predicates: rows (the thesis's), columns, checker, none\n";
 
@@ -60,6 +66,40 @@ const typename Table::mapped_type& pick(const Table& table, const std::string& k
   return it->second;
 }
 
+// The shaders of the scene in `file`'s pipeline, printed or written into `out`.
+int gen_pipeline(const std::string& file, const std::string& out) {
+  const auto s = load_scene(file);
+  if (!s) {
+    std::fprintf(stderr, "dstrans gen: %s\n", s.error().c_str());
+    return 1;
+  }
+  const render::options o;
+  const auto passes = render::pipeline_passes(DSTRANS_SHADER_DIR, *s, render::plan_of(*s, o), o);
+  if (!passes) {
+    std::fprintf(stderr, "dstrans gen: %s\n", passes.error().c_str());
+    return 1;
+  }
+  if (!out.empty()) std::filesystem::create_directories(out);
+  for (const render::named_pass& p : *passes) {
+    std::string stem = p.name;
+    for (char& c : stem) c = c == ' ' ? '_' : c;
+    for (const auto& [stage, src] : {std::make_pair(".vert", &p.sources.vertex), std::make_pair(".frag", &p.sources.fragment)}) {
+      if (out.empty()) {
+        std::printf("// ---- %s%s\n%s\n", stem.c_str(), stage, src->str().c_str());
+        continue;
+      }
+      const std::string path = out + "/" + stem + stage;
+      std::ofstream f(path);
+      if (!(f << src->str())) {
+        std::fprintf(stderr, "dstrans gen: cannot write %s\n", path.c_str());
+        return 1;
+      }
+    }
+  }
+  if (!out.empty()) std::printf("dstrans gen: %zu shaders in %s\n", 2 * passes->size(), out.c_str());
+  return 0;
+}
+
 glsl::side parse_side(const std::string& s) {
   if (s == "write") return glsl::side::write;
   if (s == "read") return glsl::side::read;
@@ -76,7 +116,12 @@ int gen(std::vector<std::string> args) {
   }
   try {
     const std::string side = take_option(args, "--side", ""), location = take_option(args, "--first-location", ""),
-                      binding = take_option(args, "--first-binding", "");
+                      binding = take_option(args, "--first-binding", ""), out = take_option(args, "--out", "");
+    if (args.size() == 2 && args[0] == "pipeline") {
+      if (!(side + location + binding).empty()) throw usage_error{"gen pipeline takes only --out"};
+      return gen_pipeline(args[1], out);
+    }
+    if (!out.empty()) throw usage_error{"--out goes with gen pipeline"};
     if (args.size() != 2) throw usage_error{"gen takes a kind and a name"};
     glsl::source src;
     if (args[0] == "gbuffer") {
@@ -91,7 +136,7 @@ int gen(std::vector<std::string> args) {
       if (!(side + location + binding).empty()) throw usage_error{"gen interlace takes no options"};
       pick(predicates(), args[1], "interlace predicate")(src);
     }
-    else throw usage_error{"unknown kind '" + args[0] + "' (known: gbuffer, interlace)"};
+    else throw usage_error{"unknown kind '" + args[0] + "' (known: gbuffer, interlace, pipeline)"};
     std::fputs(src.str().c_str(), stdout);
     return 0;
   } catch (const usage_error& e) {

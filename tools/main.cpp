@@ -10,8 +10,9 @@ namespace {
 const char* const usage =
     "usage: dstrans <command> [options]\n"
     "commands:\n"
-    "  gen <what> [options]   print GLSL: gbuffer <layout>, interlace <predicate>\n"
+    "  gen <what> [options]   print GLSL: gbuffer <layout>, interlace <predicate>, pipeline <scene.json>\n"
     "  eval --backend B       evaluate shared formulas by name on cpu, gl or vk (JSON lines)\n"
+    "  plan <scene.json>      the effects a scene calls for, and the passes and targets they need\n"
     "  render <scene.json>    render a frame and its buffers into --out DIR\n"
     "  bench [--quick]        the thesis's comparisons with times and errors, into --out DIR\n"
     "run 'dstrans <command> --help' for a command's options\n";
@@ -57,6 +58,7 @@ int main(int argc, char** argv) {
   args.erase(args.begin());
   if (command == "gen") return dstrans::cli::gen(args);
   if (command == "eval") return dstrans::cli::eval(args);
+  if (command == "plan") return dstrans::cli::plan(args);
   if (command == "render") return dstrans::cli::render(args);
   if (command == "bench") {
 #ifdef DSTRANS_HAVE_BENCH

@@ -12,12 +12,14 @@ namespace {
 using I = interlace::rows;
 
 // `src` with the frame interface (and the fragment helpers, for a fragment shader) and then `files`
-// appended, the pass shader last; a failure if a file is missing.
-result<bool> finish(glsl::source& src, const std::string& dir, std::vector<std::string> files) {
+// appended, the pass shader last, their #ifdef DST_ sections resolved on `switches`; a failure if a
+// file is missing.
+result<bool> finish(glsl::source& src, const std::string& dir, std::vector<std::string> files,
+                    const std::vector<std::string>& switches = {}) {
   if (files.back().find(".frag.") != std::string::npos) files.insert(files.begin(), "fragment.glsl");
   files.insert(files.begin(), "frame.glsl");
   for (const std::string& f : files)
-    if (auto ok = src.add_file(dir + "/" + f); !ok) return ok;
+    if (auto ok = src.add_file(dir + "/" + f, switches); !ok) return ok;
   return true;
 }
 
@@ -29,10 +31,11 @@ void add_shadow_layout(glsl::source& src, shadow_mode mode, glsl::side side) {
   else glsl::add_layout<opaque_shadow_map>(src, "shadow", o);
 }
 
-const char* shadow_define(shadow_mode mode) {
-  return mode == shadow_mode::transparent ? "#define DST_TRANSPARENT_SHADOWS\n"
-         : mode == shadow_mode::opaque    ? "#define DST_OPAQUE_SHADOWS\n"
-                                          : "";
+// The switches of a shadow lookup (or of a shadow map's pass).
+std::vector<std::string> shadow_switches(shadow_mode mode) {
+  if (mode == shadow_mode::off) return {};
+  if (mode == shadow_mode::opaque) return {effect_switch(effect::shadows)};
+  return {effect_switch(effect::shadows), effect_switch(effect::transparent_shadows)};
 }
 
 result<pass_sources> scene_vertex(const std::string& dir, pass_sources p) {
@@ -42,25 +45,27 @@ result<pass_sources> scene_vertex(const std::string& dir, pass_sources p) {
 
 }  // namespace
 
-result<pass_sources> gbuffer_pass(const std::string& dir, layer which) {
+result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on) {
   pass_sources p;
-  if (which == layer::second) p.fragment.add("#define DST_PEEL\n", __FILE__, __LINE__);
+  std::vector<std::string> switches;
+  if (which == layer::second) switches.push_back("DST_PEEL");
   glsl::layout_options o;
   o.sides = glsl::side::write;
   glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", o);
   // The first peeled layer keeps every nearest fragment, transparent or not.
-  if (which == layer::interlaced) glsl::add_interlace<I>(p.fragment);
-  if (which == layer::first) glsl::add_interlace<interlace::none>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, {"gbuffer.frag.glsl"}); !ok) return failure{ok.error()};
+  if (which == layer::interlaced && on.has(effect::transparency)) {
+    switches.push_back(effect_switch(effect::transparency));
+    glsl::add_interlace<I>(p.fragment);
+  }
+  if (auto ok = finish(p.fragment, dir, {"gbuffer.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return scene_vertex(dir, std::move(p));
 }
 
 result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode) {
   pass_sources p;
-  p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
   add_shadow_layout(p.fragment, mode, glsl::side::write);
-  glsl::add_interlace<I>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, {"shadow.frag.glsl"}); !ok) return failure{ok.error()};
+  if (mode == shadow_mode::transparent) glsl::add_interlace<I>(p.fragment);
+  if (auto ok = finish(p.fragment, dir, {"shadow.frag.glsl"}, shadow_switches(mode)); !ok) return failure{ok.error()};
   return scene_vertex(dir, std::move(p));
 }
 
@@ -79,11 +84,11 @@ target_desc final_target_desc(bool float_targets) {
 
 result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, const options& o) {
   pass_sources p;
-  if (volume) p.vertex.add("#define DST_LIGHT_VOLUME\n", __FILE__, __LINE__);
   p.vertex.add_shared(text::dst_fullscreen);
-  if (auto ok = finish(p.vertex, dir, {"light.vert.glsl"}); !ok) return failure{ok.error()};
-  p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
-  if (o.physical_transmittance) p.fragment.add("#define DST_TRANSMITTANCE\n", __FILE__, __LINE__);
+  if (auto ok = finish(p.vertex, dir, {"light.vert.glsl"}, volume ? std::vector<std::string>{"DST_LIGHT_VOLUME"} : std::vector<std::string>{}); !ok)
+    return failure{ok.error()};
+  std::vector<std::string> switches = shadow_switches(mode);
+  if (o.physical_transmittance) switches.push_back("DST_TRANSMITTANCE");
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = gbuffer_binding;
@@ -92,12 +97,12 @@ result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool v
   write.sides = glsl::side::write;
   add_light_layout(p.fragment, "light", o.float_targets, write);
   if (mode != shadow_mode::off) add_shadow_layout(p.fragment, mode, glsl::side::read);
-  glsl::add_interlace<I>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, {"lighting.glsl", "light.frag.glsl"}); !ok) return failure{ok.error()};
+  if (mode == shadow_mode::transparent) glsl::add_interlace<I>(p.fragment);
+  if (auto ok = finish(p.fragment, dir, {"lighting.glsl", "light.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return p;
 }
 
-result<pass_sources> compose_pass(const std::string& dir, const options& o) {
+result<pass_sources> compose_pass(const std::string& dir, effects on, const options& o) {
   pass_sources p{glsl::fullscreen_vertex_shader(), {}};
   glsl::layout_options read;
   read.sides = glsl::side::read;
@@ -105,9 +110,12 @@ result<pass_sources> compose_pass(const std::string& dir, const options& o) {
   glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
   read.first_binding = light_binding;
   add_light_layout(p.fragment, "light", o.float_targets, read);
+  std::vector<std::string> switches;
+  for (effect e : {effect::transparency, effect::refraction})
+    if (on.has(e)) switches.push_back(effect_switch(e));
   std::string other = "interlaced.glsl";
   if (o.method == technique::interlaced) {
-    glsl::add_interlace<I>(p.fragment);
+    if (on.has(effect::transparency)) glsl::add_interlace<I>(p.fragment);
   } else {
     read.first_binding = gbuffer2_binding;
     glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer2", read);
@@ -115,8 +123,35 @@ result<pass_sources> compose_pass(const std::string& dir, const options& o) {
     add_light_layout(p.fragment, "light2", o.float_targets, read);
     other = "peeled.glsl";
   }
-  if (auto ok = finish(p.fragment, dir, {other, "compose.frag.glsl"}); !ok) return failure{ok.error()};
+  // Without transparency the compose pass never asks for the other layer.
+  std::vector<std::string> files{"compose.frag.glsl"};
+  if (on.has(effect::transparency)) files.insert(files.begin(), other);
+  if (auto ok = finish(p.fragment, dir, files, switches); !ok) return failure{ok.error()};
   return p;
+}
+
+result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const scene& s, const frame_plan& plan,
+                                                const options& o) {
+  std::vector<named_pass> out;
+  auto add = [&](const std::string& name, result<pass_sources> p) -> result<bool> {
+    if (!p) return failure{p.error()};
+    out.push_back({name, std::move(*p)});
+    return true;
+  };
+  if (auto ok = add("gbuffer pass", gbuffer_pass(dir, layer::interlaced, plan.on)); !ok) return failure{ok.error()};
+  if (plan.shadows != shadow_mode::off)
+    if (auto ok = add("shadow pass", shadow_pass(dir, plan.shadows)); !ok) return failure{ok.error()};
+  for (shadow_mode k : all_lookups)
+    for (int vol = 0; vol < 2; ++vol) {
+      bool used = false;
+      for (std::size_t i = 0; i < s.lights.size(); ++i)
+        used = used || (plan.lookups[i] == k && (volume_of(s, s.lights[i]) != volume::fullscreen) == (vol == 1));
+      if (!used) continue;
+      const std::string name = std::string("light pass") + lookup_label(k) + (vol ? " volume" : " fullscreen");
+      if (auto ok = add(name, light_pass(dir, k, vol == 1, o)); !ok) return failure{ok.error()};
+    }
+  if (auto ok = add("compose pass", compose_pass(dir, plan.on, o)); !ok) return failure{ok.error()};
+  return out;
 }
 
 std::vector<target_desc> forward_targets(bool with_depth, bool float_targets) {
@@ -129,10 +164,11 @@ std::vector<target_desc> forward_targets(bool with_depth, bool float_targets) {
 result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, bool with_depth, shadow_mode mode,
                                   bool physical_transmittance) {
   pass_sources p;
-  if (with_depth) p.fragment.add("#define DST_FORWARD_DEPTH\n", __FILE__, __LINE__);
+  std::vector<std::string> switches;
+  if (with_depth) switches.push_back("DST_FORWARD_DEPTH");
   if (stage == forward_stage::light) {
-    p.fragment.add(shadow_define(mode), __FILE__, __LINE__);
-    if (physical_transmittance) p.fragment.add("#define DST_TRANSMITTANCE\n", __FILE__, __LINE__);
+    for (const std::string& s : shadow_switches(mode)) switches.push_back(s);
+    if (physical_transmittance) switches.push_back("DST_TRANSMITTANCE");
     if (mode != shadow_mode::off) add_shadow_layout(p.fragment, mode, glsl::side::read);
   }
   glsl::add_interlace<I>(p.fragment);
@@ -142,12 +178,12 @@ result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, b
     case forward_stage::light: files = {"lighting.glsl", "forward.glsl", "forward_light.frag.glsl"}; break;
     case forward_stage::blend: files = {"forward_blend.frag.glsl"}; break;
   }
-  if (auto ok = finish(p.fragment, dir, files); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, dir, files, switches); !ok) return failure{ok.error()};
   if (stage == forward_stage::blend) {
     p.vertex = glsl::fullscreen_vertex_shader();
     return p;
   }
-  if (auto ok = finish(p.vertex, dir, {"forward.vert.glsl"}); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.vertex, dir, {"forward.vert.glsl"}, switches); !ok) return failure{ok.error()};
   return p;
 }
 

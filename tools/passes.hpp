@@ -38,10 +38,19 @@ struct pass_sources {
 };
 
 // `dir` is the folder of the pass shaders (shaders/glsl).
-result<pass_sources> gbuffer_pass(const std::string& dir, layer which);
+result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on);
 result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode);
 result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, const options& o);
-result<pass_sources> compose_pass(const std::string& dir, const options& o);
+result<pass_sources> compose_pass(const std::string& dir, effects on, const options& o);
+
+// Every shader variant the deferred pipeline of `plan` compiles for scene `s`, named as its passes and
+// programs are labelled ("gbuffer pass", "light pass transparent shadows volume", ...).
+struct named_pass {
+  std::string name;
+  pass_sources sources;
+};
+result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const scene& s, const frame_plan& plan,
+                                                const options& o);
 
 // The forward renderer's passes: ambient (colour, normal, depth), one light, and the blend.
 enum class forward_stage { ambient, light, blend };

@@ -63,37 +63,36 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   const bool forward = plan.forward, with_depth = plan.forward_depth, peeling = plan.peeling;
   const int layers = plan.layers;
   std::vector<GLuint> gbuffer_progs;
-  GLuint compose_prog = 0, light_progs[2][2] = {}, ambient_prog = 0, forward_light_progs[2] = {};
+  // Light programs by [lookup][volume], forward light programs by [lookup]: only the lookups lights use.
+  GLuint compose_prog = 0, light_progs[3][2] = {}, ambient_prog = 0, forward_light_progs[3] = {};
   if (!forward) {
     for (layer which :
          peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
-      auto p = r.program(gbuffer_pass(shader_dir, which), "gbuffer pass");
+      auto p = r.program(gbuffer_pass(shader_dir, which, plan.on), "gbuffer pass");
       if (!p) return failure{p.error()};
       gbuffer_progs.push_back(*p);
     }
-    auto c = r.program(compose_pass(shader_dir, o), "compose pass");
+    auto c = r.program(compose_pass(shader_dir, plan.on, o), "compose pass");
     if (!c) return failure{c.error()};
     compose_prog = *c;
-    // Light programs by [shadowed][volume].
-    for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed)
-      for (int vol = 0; vol < 2; ++vol) {
-        auto p =
-            r.program(light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1, o),
-                      std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen"));
+    for (shadow_mode k : all_lookups)
+      for (int vol = 0; vol < 2 && plan.uses(k); ++vol) {
+        auto p = r.program(light_pass(shader_dir, k, vol == 1, o),
+                           std::string("light pass") + lookup_label(k) + (vol ? " volume" : " fullscreen"));
         if (!p) return failure{p.error()};
-        light_progs[shadowed][vol] = *p;
+        light_progs[int(k)][vol] = *p;
       }
   } else {
     auto a = r.program(forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off),
                        "forward ambient pass");
     if (!a) return failure{a.error()};
     ambient_prog = *a;
-    for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed) {
-      auto p = r.program(forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off,
-                                   o.physical_transmittance),
-                         std::string("forward light pass") + (shadowed ? " shadowed" : ""));
+    for (shadow_mode k : all_lookups) {
+      if (!plan.uses(k)) continue;
+      auto p = r.program(forward_pass(shader_dir, forward_stage::light, with_depth, k, o.physical_transmittance),
+                         std::string("forward light pass") + lookup_label(k));
       if (!p) return failure{p.error()};
-      forward_light_progs[shadowed] = *p;
+      forward_light_progs[int(k)] = *p;
     }
     auto b =
         r.program(forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off), "forward blend pass");
@@ -251,7 +250,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     for (const gl::targets& lb : light_buffers) glClearNamedFramebufferfv(lb.framebuffer, GL_COLOR, 0, clear_zero);
     for (std::size_t i = 0; i < s.lights.size(); ++i) {
       const light& l = s.lights[i];
-      const bool shadowed = plan.shadowed(l);
+      const shadow_mode lookup = plan.lookups[i];
+      const bool shadowed = lookup != shadow_mode::off;
       if (shadowed) {
         timed("shadow", [&] {
           gl::debug_group g("shadow pass, light " + std::to_string(i));
@@ -290,7 +290,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
           if (shadowed)
             for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
               glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
-          glUseProgram(forward_light_progs[shadowed ? 1 : 0]);
+          glUseProgram(forward_light_progs[int(lookup)]);
           glBindVertexArray(scene_vao);
           glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr, 1,
                                               GLuint(i));
@@ -310,7 +310,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
             for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
               glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
           const volume v = volume_of(s, l);
-          glUseProgram(light_progs[shadowed ? 1 : 0][v == volume::fullscreen ? 0 : 1]);
+          glUseProgram(light_progs[int(lookup)][v == volume::fullscreen ? 0 : 1]);
           if (v == volume::fullscreen) {
             glDisable(GL_CULL_FACE);
             glBindVertexArray(fullscreen_vao);

@@ -186,7 +186,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   for (layer which : forward   ? std::vector<layer>{}
                      : peeling ? std::vector<layer>{layer::first, layer::second}
                                : std::vector<layer>{layer::interlaced}) {
-    auto sh = compile(dev, gbuffer_pass(shader_dir, which), "gbuffer pass");
+    auto sh = compile(dev, gbuffer_pass(shader_dir, which, plan.on), "gbuffer pass");
     if (!sh) return failure{sh.error()};
     auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, gbuffers[0].formats, "gbuffer pass", scene_state);
     if (!p) return failure{p.error()};
@@ -207,16 +207,16 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     r.pipelines.push_back(shadow_pipe);
   }
 
-  // Light pipelines by [shadowed][volume]; volumes are drawn with their front faces (the camera is outside).
-  compiled light_shaders[2][2]{};
-  vk::pipeline light_pipes[2][2]{};
-  for (int shadowed = 0; shadowed < (forward ? 0 : any_shadows ? 2 : 1); ++shadowed)
-    for (int vol = 0; vol < 2; ++vol) {
-      const std::string name =
-          std::string("light pass") + (shadowed ? " shadowed" : "") + (vol ? " volume" : " fullscreen");
-      auto sh = compile(dev, light_pass(shader_dir, shadowed ? mode : shadow_mode::off, vol == 1, o), name);
+  // Light pipelines by [lookup][volume], for the lookups lights use; volumes are drawn with their front
+  // faces (the camera is outside).
+  compiled light_shaders[3][2]{};
+  vk::pipeline light_pipes[3][2]{};
+  for (shadow_mode k : all_lookups)
+    for (int vol = 0; vol < 2 && !forward && plan.uses(k); ++vol) {
+      const std::string name = std::string("light pass") + lookup_label(k) + (vol ? " volume" : " fullscreen");
+      auto sh = compile(dev, light_pass(shader_dir, k, vol == 1, o), name);
       if (!sh) return failure{sh.error()};
-      light_shaders[shadowed][vol] = *sh;
+      light_shaders[int(k)][vol] = *sh;
       vk::pipeline_state st;
       st.additive = true;
       st.bindings.push_back({3, sizeof(std::uint32_t), VK_VERTEX_INPUT_RATE_INSTANCE});
@@ -228,12 +228,12 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       }
       auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, light_buffers[0].formats, name, st);
       if (!p) return failure{p.error()};
-      light_pipes[shadowed][vol] = *p;
+      light_pipes[int(k)][vol] = *p;
       r.pipelines.push_back(*p);
     }
   // Forward pipelines: ambient, light by [shadowed], and the blend (in place of the compose pass).
-  compiled ambient_shaders{}, forward_light_shaders[2]{};
-  vk::pipeline ambient_pipe, forward_light_pipes[2]{};
+  compiled ambient_shaders{}, forward_light_shaders[3]{};
+  vk::pipeline ambient_pipe, forward_light_pipes[3]{};
   if (forward) {
     auto a = compile(dev, forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off),
                      "forward ambient pass");
@@ -243,27 +243,26 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!ap) return failure{ap.error()};
     ambient_pipe = *ap;
     r.pipelines.push_back(ambient_pipe);
-    for (int shadowed = 0; shadowed < (any_shadows ? 2 : 1); ++shadowed) {
-      const std::string name = std::string("forward light pass") + (shadowed ? " shadowed" : "");
-      auto sh = compile(
-          dev, forward_pass(shader_dir, forward_stage::light, with_depth, shadowed ? mode : shadow_mode::off,
-                                   o.physical_transmittance), name);
+    for (shadow_mode k : all_lookups) {
+      if (!plan.uses(k)) continue;
+      const std::string name = std::string("forward light pass") + lookup_label(k);
+      auto sh = compile(dev, forward_pass(shader_dir, forward_stage::light, with_depth, k, o.physical_transmittance), name);
       if (!sh) return failure{sh.error()};
-      forward_light_shaders[shadowed] = *sh;
+      forward_light_shaders[int(k)] = *sh;
       vk::pipeline_state st = forward_state;
       st.depth_write = false;
       st.depth_compare = VK_COMPARE_OP_LESS_OR_EQUAL;
       st.additive = true;
       auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, lit_colour_only.formats, name, st);
       if (!p) return failure{p.error()};
-      forward_light_pipes[shadowed] = *p;
+      forward_light_pipes[int(k)] = *p;
       r.pipelines.push_back(*p);
     }
   }
   auto compose_shaders =
       forward ? compile(dev, forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off),
                         "forward blend pass")
-              : compile(dev, compose_pass(shader_dir, o), "compose pass");
+              : compile(dev, compose_pass(shader_dir, plan.on, o), "compose pass");
   if (!compose_shaders) return failure{compose_shaders.error()};
   auto compose_pipe = dev.make_graphics_pipeline(*compose_shaders->vertex, *compose_shaders->fragment,
                                                  final_target->formats, "compose pass");
@@ -338,7 +337,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   // Each shadowed light's view, made once for all frames.
   std::vector<VkBuffer> light_ubos(s.lights.size(), VK_NULL_HANDLE);
   for (std::size_t i = 0; i < s.lights.size(); ++i)
-    if (plan.shadowed(s.lights[i])) {
+    if (plan.lookups[i] != shadow_mode::off) {
       auto ubo = r.buffer(std::vector<frame_block>{light_frame(s, s.lights[i], o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                           "light frame");
       if (!ubo) return failure{ubo.error()};
@@ -397,7 +396,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     });
     for (std::size_t i = 0; i < s.lights.size(); ++i) {
       const light& l = s.lights[i];
-      const bool shadowed = plan.shadowed(l);
+      const shadow_mode lookup = plan.lookups[i];
+      const bool shadowed = lookup != shadow_mode::off;
       if (shadowed) {
         bindings seen_from_light = common;
         seen_from_light.buffers[frame_binding] = light_ubos[i];
@@ -419,8 +419,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         }
       }
       if (forward) {
-        const vk::pipeline& p = forward_light_pipes[shadowed ? 1 : 0];
-        const compiled& sh = forward_light_shaders[shadowed ? 1 : 0];
+        const vk::pipeline& p = forward_light_pipes[int(lookup)];
+        const compiled& sh = forward_light_shaders[int(lookup)];
         auto set = make_set(r, p, {sh.vertex, sh.fragment}, base);
         if (!set) return failure{set.error()};
         timed("light", [&](VkCommandBuffer cmd) {
@@ -439,8 +439,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       }
       const volume v = volume_of(s, l);
       const int vol = v == volume::fullscreen ? 0 : 1;
-      const vk::pipeline& p = light_pipes[shadowed ? 1 : 0][vol];
-      const compiled& sh = light_shaders[shadowed ? 1 : 0][vol];
+      const vk::pipeline& p = light_pipes[int(lookup)][vol];
+      const compiled& sh = light_shaders[int(lookup)][vol];
       for (int k = 0; k < layers; ++k) {
         auto set = make_set(r, p, {sh.vertex, sh.fragment}, per_layer[std::size_t(k)]);
         if (!set) return failure{set.error()};

@@ -4,7 +4,8 @@
 //   src.add_shared(dstrans::text::dst_surface);           // a shared block, once however often added
 //   src.add("void main() {}\n", __FILE__, __LINE__);      // generated or hand-written text
 //   std::string code = src.str();                         // starts with "#version 450"
-//   src.add_file("shaders/glsl/compose.frag.glsl");       // a pass shader, its lines mapped to that file
+//   src.add_file("shaders/glsl/compose.frag.glsl", {"DST_TRANSPARENCY"});   // a pass shader, its lines mapped
+//                                                         // to that file, its DST_ switches resolved
 //   std::string errors = src.map_log(compiler_log);       // "0:12: ..." -> "include/dstrans/x.hpp:40: ..."
 #pragma once
 
@@ -125,18 +126,61 @@ class source {
 
   // Appends the text of file `path` (a hand-written pass shader), its lines mapped to that file, after
   // the shared blocks it calls; a failure if it cannot be read.
-  result<bool> add_file(const std::string& path) {
+  //
+  // Sections under `#ifdef DST_...` / `#ifndef DST_...` (with `#else`, `#endif`) are resolved here, on
+  // `switches` (the names that are on): what an absent effect needs is left out of the text, the shared
+  // blocks it calls included, so a shader carries no code for an effect it does not run. Other
+  // preprocessor lines pass through; `#if` on a DST_ name is an error (write #ifdef).
+  result<bool> add_file(const std::string& path, const std::vector<std::string>& switches = {}) {
     std::ifstream in(path);
     if (!in) return failure{"cannot read GLSL file " + path};
-    std::ostringstream text;
-    text << in.rdbuf();
+    struct section {
+      bool resolved, keep, was_keeping;
+    };
+    std::vector<section> open;
+    bool keeping = true;
+    std::vector<std::pair<int, std::string>> kept;  // line number, text
+    std::string text, line;
+    for (int number = 1; std::getline(in, line); ++number) {
+      std::istringstream words(line);
+      std::string directive, name;
+      words >> directive >> name;
+      const bool ours = name.rfind("DST_", 0) == 0;
+      auto on = [&] {
+        for (const std::string& s : switches)
+          if (s == name) return true;
+        return false;
+      };
+      if (directive == "#if" && line.find("DST_") != std::string::npos)
+        return failure{path + ":" + std::to_string(number) + ": test dstrans switches with #ifdef or #ifndef"};
+      if ((directive == "#ifdef" || directive == "#ifndef") && ours) {
+        const bool keep = directive == "#ifdef" ? on() : !on();
+        open.push_back({true, keep, keeping});
+        keeping = keeping && keep;
+        continue;
+      }
+      if (directive == "#if" || directive == "#ifdef" || directive == "#ifndef") open.push_back({false, true, keeping});
+      if (!open.empty() && open.back().resolved && (directive == "#else" || directive == "#endif")) {
+        if (directive == "#else") keeping = open.back().was_keeping && !open.back().keep;
+        else {
+          keeping = open.back().was_keeping;
+          open.pop_back();
+        }
+        continue;
+      }
+      if (directive == "#endif" && !open.empty()) open.pop_back();
+      if (keeping) {
+        kept.push_back({number, line});
+        text += line + "\n";
+      }
+    }
     for (const shared_text* block : detail::shared_blocks())
       for (const std::string& name : definitions(block->code))
-        if (uses(text.str(), name)) {
+        if (uses(text, name)) {
           add_shared(*block);
           break;
         }
-    add(text.str(), path, 1);
+    for (const auto& [number, row] : kept) add(row + "\n", path, number);
     return true;
   }
 

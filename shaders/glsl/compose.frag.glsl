@@ -1,33 +1,38 @@
-// The compose pass (thesis 3.3): de-interlacing, refraction with the partner-row fallback and depth
-// rejection, and the blend of Eq. 3.3 with specular and ambient light. The technique says where the
-// other layer of a pixel lives (interlaced.glsl, peeled.glsl): dst_other and dst_other_light.
+// The compose pass (thesis 3.3). Without transparency, plain deferred shading of the one layer. With
+// DST_TRANSPARENCY, de-interlacing and the blend of Eq. 3.3 with specular and ambient light; with
+// DST_REFRACTION also refraction with the partner-row fallback and depth rejection. The technique says
+// where the other layer of a pixel lives (interlaced.glsl, peeled.glsl): dst_other and dst_other_light.
 layout(location = 0) out vec4 colour;
 
 void main() {
-  ivec2 size = frame.size.xy;
   ivec2 p = dst_pixel();
-  dst_surface a = dst_gbuffer_read(p), b = dst_other(p);
-  dst_light_sample light_a = dst_light_read(p), light_b = dst_other_light(p);
+  dst_surface a = dst_gbuffer_read(p);
+  dst_light_sample light_a = dst_light_read(p);
   vec3 ambient = frame.ambient.xyz;
-  if (a.alpha >= 1.0f && b.alpha >= 1.0f) {
-    colour = vec4(dst_shade(a, light_a, ambient), 1.0f);  // empty pixels are cleared to black
+#ifdef DST_TRANSPARENCY
+  dst_surface b = dst_other(p);
+  dst_light_sample light_b = dst_other_light(p);
+  if (a.alpha < 1.0f || b.alpha < 1.0f) {
+    bool a_transparent = a.alpha <= b.alpha;
+    dst_surface t = a_transparent ? a : b;
+    dst_light_sample light_t = a_transparent ? light_a : light_b;
+    dst_surface o = a_transparent ? b : a;
+    dst_light_sample light_o = a_transparent ? light_b : light_a;
+#ifdef DST_REFRACTION
+    // The sample moved by the glass's screen-space normal, or the layer behind it when it holds glass
+    // too; a sample in front of the glass would leak into it, so the background stays then.
+    ivec2 moved = dst_refraction_pixel(p, frame.size.xy, mat3(frame.view) * t.normal, frame.params.x);
+    dst_surface r = dst_gbuffer_read(moved);
+    dst_surface r2 = r.alpha < 1.0f ? dst_other(moved) : r;  // the partner only where it is needed
+    int from = dst_refraction_source(t.depth, r.alpha, r.depth, r2.alpha, r2.depth);
+    if (from != 0) {
+      o = from == 1 ? r : r2;
+      light_o = from == 1 ? dst_light_read(moved) : dst_other_light(moved);
+    }
+#endif
+    colour = vec4(dst_compose(o, light_o, t, light_t, ambient), 1.0f);
     return;
   }
-  bool a_transparent = a.alpha <= b.alpha;
-  dst_surface t = a_transparent ? a : b;
-  dst_light_sample light_t = a_transparent ? light_a : light_b;
-  dst_surface o = a_transparent ? b : a;
-  dst_light_sample light_o = a_transparent ? light_b : light_a;
-  // Refraction: the sample moved by the transparent surface's screen-space normal, or the layer behind
-  // it when it holds glass too; a sample in front of the glass would leak into it, so the background
-  // stays then.
-  ivec2 moved = dst_refraction_pixel(p, size, mat3(frame.view) * t.normal, frame.params.x);
-  dst_surface r = dst_gbuffer_read(moved);
-  dst_surface r2 = r.alpha < 1.0f ? dst_other(moved) : r;  // the partner only where it is needed
-  int from = dst_refraction_source(t.depth, r.alpha, r.depth, r2.alpha, r2.depth);
-  if (from != 0) {
-    o = from == 1 ? r : r2;
-    light_o = from == 1 ? dst_light_read(moved) : dst_other_light(moved);
-  }
-  colour = vec4(dst_compose(o, light_o, t, light_t, ambient), 1.0f);
+#endif
+  colour = vec4(dst_shade(a, light_a, ambient), 1.0f);  // empty pixels are cleared to black
 }

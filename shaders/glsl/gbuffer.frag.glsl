@@ -1,7 +1,7 @@
-// The G-buffer pass (thesis 3.1.1): depth test and write on, blending off. A transparent fragment is
-// kept only where the interlace predicate allows; transparent materials are double-sided, their normal
-// turned to face the viewer. With DST_PEEL it is the second layer of deferred depth peeling (4.1.2): only
-// opaque fragments behind the first layer's depth.
+// The G-buffer pass (thesis 3.1.1): depth test and write on, blending off. With DST_TRANSPARENCY a
+// transparent fragment is kept only where the interlace predicate allows; transparent materials are
+// double-sided, their normal turned to face the viewer. With DST_PEEL it is the second layer of deferred
+// depth peeling (4.1.2): only opaque fragments behind the first layer's depth.
 layout(location = 0) in vec3 world_normal;
 layout(location = 1) flat in uint surface_material;
 #ifdef DST_PEEL
@@ -10,11 +10,11 @@ layout(binding = 13) uniform sampler2D dst_peel_depth;
 
 void main() {
   dst_material_data m = materials[surface_material];
-  bool transparent = m.diffuse_alpha.w < 1.0f;
 #ifdef DST_PEEL
-  if (transparent || gl_FragCoord.z <= texelFetch(dst_peel_depth, dst_pixel(), 0).x) discard;
-#else
-  if (transparent && !dst_interlace_keep(dst_pixel(), frame.size.xy)) discard;
+  if (m.diffuse_alpha.w < 1.0f || gl_FragCoord.z <= texelFetch(dst_peel_depth, dst_pixel(), 0).x) discard;
+#endif
+#ifdef DST_TRANSPARENCY
+  if (m.diffuse_alpha.w < 1.0f && !dst_interlace_keep(dst_pixel(), frame.size.xy)) discard;
 #endif
   dst_gbuffer_write(dst_material_surface(m, world_normal));
 }

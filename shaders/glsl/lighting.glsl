@@ -1,8 +1,8 @@
-// The light one light gives a point: attenuation, spot falloff, the shadow map (plain, or transparent by
-// Eq. 3.1-3.2; with DST_TRANSMITTANCE by I_L C instead of min(I_L, C)) and Phong (Eq. 2.1). Shared by the
-// deferred light pass and the forward light passes.
+// The light one light gives a point: attenuation, spot falloff, the shadow map (DST_SHADOWS: plain, or with
+// DST_TRANSPARENT_SHADOWS transparent by Eq. 3.1-3.2; with DST_TRANSMITTANCE by I_L C instead of
+// min(I_L, C)) and Phong (Eq. 2.1). Shared by the deferred light pass and the forward light passes.
 
-#if defined(DST_OPAQUE_SHADOWS) || defined(DST_TRANSPARENT_SHADOWS)
+#ifdef DST_SHADOWS
 vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
   vec4 h = l.shadow_view_proj * vec4(world, 1.0f);
   if (!(h.w > 0.0f)) return light;
@@ -31,7 +31,7 @@ dst_light_sample dst_light_at_point(dst_light_data l, vec3 p, vec3 n, float spec
   vec4 reach = dst_light_reach(int(l.direction_kind.w + 0.5f), l.position_range.xyz, l.direction_kind.xyz,
                                l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, p);
   vec3 light = l.colour_cos_outer.xyz * reach.w;
-#if defined(DST_OPAQUE_SHADOWS) || defined(DST_TRANSPARENT_SHADOWS)
+#ifdef DST_SHADOWS
   if (l.cos_inner.y > 0.5f) light = dst_shadowed(light, p, l);
 #endif
   return dst_phong(n, reach.xyz, normalize(frame.camera_position.xyz - p), spec_power, light);

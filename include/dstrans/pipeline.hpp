@@ -1,0 +1,150 @@
+// The deferred pipeline (TECHNIQUES.md S0) a set of effects needs: its passes, what each reads and
+// writes, the shader switches each compiles with, and its render targets. Only the effects in the set
+// get a pass, a target or a switch (DESIGN.md principle 5).
+//
+//   // at run time, from a scene
+//   dstrans::pipeline_plan p = dstrans::plan_pipeline(dstrans::effects_of(dstrans::scene_features(s)));
+//   // at compile time: the set is a template argument, and the plan's figures are constants
+//   using glass = dstrans::pipeline<dstrans::effect_set<dstrans::effect::transparency>>;
+//   static_assert(glass::screen_bytes_per_pixel == 20 && !glass::has_shadow_colour);
+//   dstrans::pipeline_plan same = glass::plan();
+//
+// Both go through pipeline<E>::plan(): plan_pipeline picks the instantiation for its set. Pass shaders
+// test the switches with #ifdef; glsl::source::add_file resolves them, so a shader's text holds no code
+// for an effect that is off.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gbuffer.hpp"
+#include "scene_features.hpp"
+
+namespace dstrans {
+
+// A render target of the plan: a Table's target, or the shadow map's (one set, reused by every light).
+struct planned_target {
+  std::string name;  // "gbuffer.RT0", ..., "light.RT0", "shadow.depth", "shadow.colour"
+  format fmt;
+  int bytes_per_pixel;
+  bool shadow_map;   // sized as the shadow map, not the screen
+};
+
+struct planned_pass {
+  std::string name;                   // gbuffer, shadow (once per shadow-casting light), light, compose
+  std::vector<std::string> reads;     // targets sampled
+  std::vector<std::string> writes;    // targets drawn into
+  std::vector<std::string> switches;  // the pass shader's #ifdef switches that are on
+};
+
+struct pipeline_plan {
+  effects on;
+  std::vector<planned_pass> passes;
+  std::vector<planned_target> targets;
+  // Screen-sized targets, in bytes a pixel (the thesis's 20: Table 3.1's G-buffer and the light buffer).
+  int bytes_per_pixel = 0;
+
+  const planned_target* target(const std::string& name) const {
+    for (const planned_target& t : targets)
+      if (t.name == name) return &t;
+    return nullptr;
+  }
+  const planned_pass* pass(const std::string& name) const {
+    for (const planned_pass& p : passes)
+      if (p.name == name) return &p;
+    return nullptr;
+  }
+};
+
+template <class E>
+struct pipeline {
+  static constexpr effects set = E::value;
+  static constexpr bool interlaced = set.has(effect::transparency);
+  static constexpr bool refracts = set.has(effect::refraction);
+  static constexpr bool has_shadows = set.has(effect::shadows);
+  static constexpr bool has_shadow_colour = set.has(effect::transparent_shadows);
+  static constexpr int screen_bytes_per_pixel = thesis_gbuffer::bytes_per_pixel + thesis_light_buffer::bytes_per_pixel;
+  static constexpr int shadow_bytes_per_texel = !has_shadows         ? 0
+                                                : has_shadow_colour ? thesis_shadow_map::bytes_per_pixel
+                                                                    : info(format::r32f).bytes_per_pixel;
+  static_assert(!refracts || interlaced, "refraction bends the light through transparent surfaces: it needs transparency");
+  static_assert(!has_shadow_colour || has_shadows, "transparent shadows are shadows: they need the shadows effect");
+
+  static pipeline_plan plan() {
+    pipeline_plan p;
+    p.on = set;
+    auto add_targets = [&](const std::vector<target_desc>& descs, const std::string& name, bool shadow_map) {
+      std::vector<std::string> names;
+      for (std::size_t i = 0; i < descs.size(); ++i) {
+        names.push_back(name + ".RT" + std::to_string(i));
+        p.targets.push_back({names.back(), descs[i].fmt, info(descs[i].fmt).bytes_per_pixel, shadow_map});
+      }
+      return names;
+    };
+    const std::vector<std::string> gbuffer = add_targets(describe<thesis_gbuffer>(), "gbuffer", false);
+    const std::vector<std::string> light = add_targets(describe<thesis_light_buffer>(), "light", false);
+    std::vector<std::string> shadow;
+    if constexpr (has_shadows) {
+      p.targets.push_back({"shadow.depth", format::r32f, info(format::r32f).bytes_per_pixel, true});
+      shadow.push_back("shadow.depth");
+      if constexpr (has_shadow_colour) {
+        p.targets.push_back({"shadow.colour", format::rgba8, info(format::rgba8).bytes_per_pixel, true});
+        shadow.push_back("shadow.colour");
+      }
+    }
+    std::vector<std::string> geometry;  // the G-buffer pass's switches
+    if constexpr (interlaced) geometry.push_back(effect_switch(effect::transparency));
+    p.passes.push_back({"gbuffer", {}, gbuffer, geometry});
+    std::vector<std::string> lookup;
+    if constexpr (has_shadows) {
+      lookup.push_back(effect_switch(effect::shadows));
+      if constexpr (has_shadow_colour) lookup.push_back(effect_switch(effect::transparent_shadows));
+      p.passes.push_back({"shadow", {}, shadow, lookup});
+    }
+    std::vector<std::string> light_reads = gbuffer;
+    light_reads.insert(light_reads.end(), shadow.begin(), shadow.end());
+    p.passes.push_back({"light", light_reads, light, lookup});
+    std::vector<std::string> compose_reads = gbuffer, compose;
+    compose_reads.insert(compose_reads.end(), light.begin(), light.end());
+    if constexpr (interlaced) compose.push_back(effect_switch(effect::transparency));
+    if constexpr (refracts) compose.push_back(effect_switch(effect::refraction));
+    p.passes.push_back({"compose", compose_reads, {"output"}, compose});
+    for (const planned_target& t : p.targets)
+      if (!t.shadow_map) p.bytes_per_pixel += t.bytes_per_pixel;
+    return p;
+  }
+};
+
+namespace detail {
+template <unsigned Bits>
+struct bits_set {
+  static constexpr effects value{Bits};
+};
+template <unsigned Bits>
+pipeline_plan plan_bits(unsigned bits) {
+  if constexpr (Bits == effects::all().bits + 1u) {
+    return {};
+  } else {
+    // Sets that pipeline<> rejects (refraction without transparency, transparent shadows without shadows)
+    // are completed first by plan_pipeline, so they never reach here.
+    constexpr effects e{Bits};
+    if constexpr ((!e.has(effect::refraction) || e.has(effect::transparency)) &&
+                  (!e.has(effect::transparent_shadows) || e.has(effect::shadows)))
+      if (bits == Bits) return pipeline<bits_set<Bits>>::plan();
+    return plan_bits<Bits + 1u>(bits);
+  }
+}
+}  // namespace detail
+
+// The effects `e` needs with the ones they depend on: refraction brings transparency, transparent
+// shadows bring shadows.
+constexpr effects completed(effects e) {
+  if (e.has(effect::refraction)) e = e.with(effect::transparency);
+  if (e.has(effect::transparent_shadows)) e = e.with(effect::shadows);
+  return e;
+}
+
+// The plan for set `e` (completed), through the same pipeline<E>::plan() a compile-time caller uses.
+inline pipeline_plan plan_pipeline(effects e) { return detail::plan_bits<0u>(completed(e).bits); }
+
+}  // namespace dstrans

@@ -1,0 +1,173 @@
+// Which effects a scene calls for, and why (DESIGN.md principle 5): a scene without glass must cost what
+// a plain deferred renderer costs, so every effect is derived from the scene, never assumed.
+//
+//   std::vector<dstrans::feature> found = dstrans::scene_features(s);
+//   // {transparency, "objects[3] has material 2 with alpha 0.35"}, {shadows, "lights[0] is a spot light ..."}
+//   dstrans::effects e = dstrans::effects_of(found);
+//   if (e.has(dstrans::effect::refraction)) { ... }
+//   constexpr dstrans::effects glass = dstrans::effect_set<dstrans::effect::transparency>::value;
+//
+// The effects and what calls for each:
+// - transparency: an object whose material has alpha below 1 (interlaced G-buffer, de-interlacing);
+// - refraction: such an object whose material is refractive;
+// - shadows: a spot light that casts shadows (shadow pass, depth map, lookup);
+// - transparent_shadows: such a light whose cone reaches a transparent object (the shadow map's colour
+//   target and the lookup of Eq. 3.1). Reaching is decided by the object's bounding sphere against the
+//   cone and range, so it is conservative: an occluded pane still counts.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene.hpp"
+
+namespace dstrans {
+
+enum class effect : unsigned { transparency, refraction, shadows, transparent_shadows };
+constexpr effect all_effects[] = {effect::transparency, effect::refraction, effect::shadows, effect::transparent_shadows};
+
+// The effect's name in plans and reports.
+constexpr const char* effect_name(effect e) {
+  switch (e) {
+    case effect::transparency: return "transparency";
+    case effect::refraction: return "refraction";
+    case effect::shadows: return "shadows";
+    case effect::transparent_shadows: return "transparent_shadows";
+  }
+  return "";
+}
+
+// The preprocessor switch that pass shaders test with #ifdef for the effect.
+constexpr const char* effect_switch(effect e) {
+  switch (e) {
+    case effect::transparency: return "DST_TRANSPARENCY";
+    case effect::refraction: return "DST_REFRACTION";
+    case effect::shadows: return "DST_SHADOWS";
+    case effect::transparent_shadows: return "DST_TRANSPARENT_SHADOWS";
+  }
+  return "";
+}
+
+// A set of effects.
+struct effects {
+  unsigned bits = 0;
+
+  constexpr bool has(effect e) const { return (bits >> unsigned(e)) & 1u; }
+  constexpr effects with(effect e) const { return {bits | (1u << unsigned(e))}; }
+  constexpr effects without(effect e) const { return {bits & ~(1u << unsigned(e))}; }
+  constexpr bool operator==(effects o) const { return bits == o.bits; }
+  constexpr bool operator!=(effects o) const { return bits != o.bits; }
+  // Every effect, in the order of all_effects.
+  static constexpr effects all() { return {(1u << 4) - 1u}; }
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (effect e : all_effects)
+      if (has(e)) out.push_back(effect_name(e));
+    return out;
+  }
+};
+
+// A set fixed at compile time: effect_set<effect::transparency, effect::refraction>::value.
+template <effect... E>
+struct effect_set {
+  static constexpr effects value{(0u | ... | (1u << unsigned(E)))};
+};
+
+// An effect a scene calls for, with the reason in words.
+struct feature {
+  effect what;
+  std::string why;
+};
+
+namespace detail {
+// The centre and radius of a sphere around object o's vertices, in world space.
+inline std::pair<glm::vec3, float> bounding_sphere(const object& o) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::vec3& p : o.geometry.positions) {
+    const glm::vec3 w = glm::vec3(o.transform * glm::vec4(p, 1.0f));
+    lo = glm::min(lo, w);
+    hi = glm::max(hi, w);
+  }
+  if (o.geometry.positions.empty()) return {glm::vec3(0.0f), -1.0f};
+  const glm::vec3 c = (lo + hi) * 0.5f;
+  float r = 0.0f;
+  for (const glm::vec3& p : o.geometry.positions) r = std::max(r, glm::length(glm::vec3(o.transform * glm::vec4(p, 1.0f)) - c));
+  return {c, r};
+}
+}  // namespace detail
+
+// Whether spot light l's cone (outer angle, range) reaches object o's bounding sphere.
+inline bool light_reaches(const light& l, const object& o) {
+  const auto [c, r] = detail::bounding_sphere(o);
+  if (r < 0.0f) return false;
+  const glm::vec3 v = c - l.position;
+  const float distance = glm::length(v);
+  if (distance <= r) return true;
+  if (distance - r >= l.range) return false;
+  const float axis = glm::dot(v / distance, glm::normalize(l.direction));
+  const float angle = std::acos(std::clamp(axis, -1.0f, 1.0f));
+  const float spread = std::asin(std::min(r / distance, 1.0f));
+  return angle - spread < glm::radians(l.outer_angle);
+}
+
+// Whether light l casts shadows the renderer draws (spot lights only, as in the thesis).
+inline bool casts_shadows(const light& l) { return l.shadows && l.kind == light_kind::spot; }
+
+// Whether the shadow map of light l must hold transparent occluders: it casts shadows and reaches a
+// transparent object of s.
+inline bool sees_transparency(const scene& s, const light& l) {
+  if (!casts_shadows(l)) return false;
+  for (const object& o : s.objects)
+    if (o.material < s.materials.size() && s.materials[o.material].transparent() && light_reaches(l, o)) return true;
+  return false;
+}
+
+// The effects scene s calls for, each once, with the first reason found.
+inline std::vector<feature> scene_features(const scene& s) {
+  std::vector<feature> out;
+  auto add = [&](effect e, const std::string& why) {
+    for (const feature& f : out)
+      if (f.what == e) return;
+    out.push_back({e, why});
+  };
+  auto number = [](float v) {
+    std::string t = std::to_string(v);
+    t.erase(t.find_last_not_of('0') + 1);
+    if (t.back() == '.') t.pop_back();
+    return t;
+  };
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    const std::uint32_t m = s.objects[i].material;
+    if (m >= s.materials.size() || !s.materials[m].transparent()) continue;
+    const std::string what = "objects[" + std::to_string(i) + "] has material " + std::to_string(m) + " with alpha " +
+                             number(s.materials[m].alpha);
+    add(effect::transparency, what);
+    if (s.materials[m].refractive) add(effect::refraction, what + ", refractive");
+  }
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const light& l = s.lights[i];
+    if (!casts_shadows(l)) continue;
+    add(effect::shadows, "lights[" + std::to_string(i) + "] is a spot light that casts shadows");
+    for (std::size_t k = 0; k < s.objects.size(); ++k) {
+      const std::uint32_t m = s.objects[k].material;
+      if (m < s.materials.size() && s.materials[m].transparent() && light_reaches(l, s.objects[k]))
+        add(effect::transparent_shadows, "lights[" + std::to_string(i) + "] casts shadows and its cone reaches objects[" +
+                                             std::to_string(k) + "], which is transparent");
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const feature& a, const feature& b) { return a.what < b.what; });
+  return out;
+}
+
+// The set of the features' effects.
+inline effects effects_of(const std::vector<feature>& found) {
+  effects e;
+  for (const feature& f : found) e = e.with(f.what);
+  return e;
+}
+
+}  // namespace dstrans

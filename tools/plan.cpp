@@ -1,0 +1,87 @@
+// dstrans plan: the effects a scene calls for and why, and the passes, render targets and shader switches
+// of the pipeline they need. dstrans gen pipeline (gen.cpp) prints that pipeline's shaders.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include <dstrans/scene_features.hpp>
+
+#include "cli.hpp"
+#include "frame_data.hpp"
+#include "scene_json.hpp"
+
+namespace dstrans::cli {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+const char* const usage =
+    "usage: dstrans plan <scene.json> [--json]\n"
+    "the effects the scene calls for (and why), and the passes, render targets and shader switches of the\n"
+    "interlaced deferred pipeline that runs exactly those effects\n";
+
+std::string joined(const std::vector<std::string>& words) {
+  std::string out;
+  for (const std::string& w : words) out += (out.empty() ? "" : ", ") + w;
+  return out.empty() ? "-" : out;
+}
+
+}  // namespace
+
+int plan(std::vector<std::string> args) {
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
+    std::fputs(usage, stdout);
+    return 0;
+  }
+  try {
+    bool as_json = false;
+    std::vector<std::string> files;
+    for (const std::string& a : args) {
+      if (a == "--json") as_json = true;
+      else if (a.rfind("--", 0) == 0) throw usage_error{"unknown option '" + a + "'"};
+      else files.push_back(a);
+    }
+    if (files.size() != 1) throw usage_error{"plan takes one scene file"};
+    const auto s = load_scene(files[0]);
+    if (!s) {
+      std::fprintf(stderr, "dstrans plan: %s\n", s.error().c_str());
+      return 1;
+    }
+    const std::vector<feature> found = scene_features(*s);
+    const pipeline_plan& p = render::plan_of(*s, render::options{}).pipeline;
+    if (as_json) {
+      json reasons = json::object(), passes = json::array(), targets = json::array();
+      for (const feature& f : found) reasons[effect_name(f.what)] = f.why;
+      for (const planned_pass& pass : p.passes)
+        passes.push_back({{"name", pass.name}, {"targets", pass.writes}, {"reads", pass.reads}, {"switches", pass.switches}});
+      for (const planned_target& t : p.targets)
+        targets.push_back({{"name", t.name}, {"format", info(t.fmt).name}, {"bytes_per_pixel", t.bytes_per_pixel},
+                           {"size", t.shadow_map ? "shadow map" : "screen"}});
+      const json out{{"effects", p.on.names()}, {"reasons", reasons}, {"passes", passes}, {"targets", targets},
+                     {"bytes_per_pixel", p.bytes_per_pixel}};
+      std::puts(out.dump().c_str());
+      return 0;
+    }
+    std::printf("effects:\n");
+    if (found.empty()) std::printf("  none: a plain deferred renderer\n");
+    for (const feature& f : found) std::printf("  %-20s %s\n", effect_name(f.what), f.why.c_str());
+    std::printf("passes:\n");
+    for (const planned_pass& pass : p.passes)
+      std::printf("  %-8s reads %s; writes %s; switches %s\n", pass.name.c_str(), joined(pass.reads).c_str(),
+                  joined(pass.writes).c_str(), joined(pass.switches).c_str());
+    std::printf("targets:\n");
+    for (const planned_target& t : p.targets)
+      std::printf("  %-14s %-8s %2d bytes a %s\n", t.name.c_str(), info(t.fmt).name, t.bytes_per_pixel,
+                  t.shadow_map ? "shadow-map texel" : "pixel");
+    std::printf("%d bytes a pixel on screen\n", p.bytes_per_pixel);
+    return 0;
+  } catch (const usage_error& e) {
+    std::fprintf(stderr, "dstrans plan: %s\n%s", e.message.c_str(), usage);
+    return 2;
+  }
+}
+
+}  // namespace dstrans::cli
