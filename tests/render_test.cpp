@@ -13,6 +13,9 @@
 #include <frame_data.hpp>
 #include <leaks.hpp>
 #include <passes.hpp>
+#include <dstrans_spirv.hpp>
+
+#include "effect_scenes.hpp"
 #include <scene_json.hpp>
 
 #include <dstrans_gl_context.hpp>
@@ -536,4 +539,66 @@ TEST_CASE("the hard_cases scene renders finite, non-negative buffers on both bac
         INFO("first: " << first);
         CHECK(bad == 0);
       }
+}
+
+// Issue 7: a scene calls only for its effects, and leaving the others out changes no pixel.
+TEST_CASE("each rung's own plan draws the image the full pipeline draws", "[render][pipeline]") {
+  for (testing::rung r : {testing::rung::nothing, testing::rung::shadows, testing::rung::glass, testing::rung::refractive,
+                          testing::rung::seen})
+    for (backend b : backends) {
+      const scene s = testing::effect_scene(r);
+      // The full pipeline with the effects the scene lacks disabled: refraction of strength 0 for glass
+      // that is not refractive; the others have nothing to act on.
+      options own = small(160, 90), full = own;
+      full.force = effects::all();
+      if (r == testing::rung::glass) full.refraction = 0.0f;
+      REQUIRE(render::plan_of(s, full).on == effects::all());
+      auto a = draw(b, s, own);
+      auto c = draw(b, s, full);
+      if (!a || !c) continue;
+      INFO(name(b) << ", rung " << int(r) << ": " << render::plan_of(s, own).on.names().size() << " effects");
+      CHECK(rmse(a->final_image, c->final_image) == 0.0);
+    }
+}
+
+// The SPIR-V instructions of every shader of a pipeline.
+std::size_t spirv_instructions(const std::vector<render::named_pass>& passes) {
+  std::size_t n = 0;
+  for (const render::named_pass& p : passes)
+    for (const auto& [src, st] : {std::make_pair(&p.sources.vertex, spirv::stage::vertex),
+                                  std::make_pair(&p.sources.fragment, spirv::stage::fragment)}) {
+      const auto words = spirv::compile(*src, st, spirv::api::vulkan);
+      INFO(p.name << ": " << words.error());
+      REQUIRE(words);
+      for (std::size_t i = 5; i < words->size(); i += (*words)[i] >> 16u) ++n;  // after the 5-word header
+    }
+  return n;
+}
+
+TEST_CASE("a pipeline without an effect carries none of its code", "[pipeline][glsl]") {
+  struct step {
+    testing::rung without, with;
+    const char* code;  // a function only the effect's code calls
+  };
+  for (const step& st : {step{testing::rung::nothing, testing::rung::shadows, "dst_opaque_shadow"},
+                         step{testing::rung::shadows, testing::rung::glass, "dst_interlace_keep"},
+                         step{testing::rung::glass, testing::rung::refractive, "dst_refraction_pixel"},
+                         step{testing::rung::refractive, testing::rung::seen, "dst_transparent_shadow"}}) {
+    const options o = small(160, 90);
+    auto shaders = [&](testing::rung r) {
+      const scene s = testing::effect_scene(r);
+      auto p = render::pipeline_passes(DSTRANS_SHADER_DIR, s, render::plan_of(s, o), o);
+      INFO(p.error());
+      REQUIRE(p);
+      std::string all;
+      for (const render::named_pass& np : *p) all += np.sources.vertex.str() + np.sources.fragment.str();
+      return std::make_pair(*p, all);
+    };
+    const auto [without, without_text] = shaders(st.without);
+    const auto [with, with_text] = shaders(st.with);
+    INFO(st.code);
+    CHECK(with_text.find(st.code) != std::string::npos);
+    CHECK(without_text.find(st.code) == std::string::npos);
+    CHECK(spirv_instructions(without) < spirv_instructions(with));
+  }
 }

@@ -42,6 +42,7 @@ struct config {
   int lights;         // the first this many spot lights of the scene
   render::shadow_mode shadows;
   bool refraction;
+  effects force{};  // effects the scene does not use, run anyway to measure what leaving them out saves
 };
 
 const char* technique_name(render::technique t) {
@@ -57,7 +58,9 @@ const char* shadow_name(render::shadow_mode m) {
   return m == render::shadow_mode::off ? "off" : m == render::shadow_mode::opaque ? "opaque" : "transparent";
 }
 std::string key(const config& c) {
-  return std::string(technique_name(c.method)) + "/" + c.scene + "/" + std::to_string(c.lights) + "/" + shadow_name(c.shadows) +
+  std::string forced;
+  for (const std::string& e : c.force.names()) forced += "+" + e;
+  return std::string(technique_name(c.method)) + "/" + c.scene + "/" + std::to_string(c.lights) + "/" + shadow_name(c.shadows) + forced +
          "/" + (c.refraction ? "refraction" : "no refraction");
 }
 
@@ -174,6 +177,9 @@ int bench(std::vector<std::string> args) {
     const int fixed = quick ? 8 : 16;  // Tables 4.6, 4.7
     for (const char* name : {"glass_room", "glass_room_17", "glass_room_0"})
       for (S sh : {S::off, S::transparent}) add({T::interlaced, name, fixed, sh, true});
+    // What an effect glass_room_0 does not use would cost (DESIGN.md principle 5): each one forced in.
+    for (effect e : {effect::transparency, effect::refraction, effect::transparent_shadows})
+      add({T::interlaced, "glass_room_0", fixed, S::transparent, true, effects{}.with(e)});
 
     render::options base;
     base.width = quick ? 320 : 640;
@@ -186,11 +192,16 @@ int bench(std::vector<std::string> args) {
     for (std::size_t k = 0; k < configs.size(); ++k) {
       const config& c = configs[k];
       const scene s = with_lights(scenes.at(c.scene), c.lights);
-      auto run = [&](render::technique t) -> result<render::frame> {
+      auto options_of = [&](render::technique t) {
         render::options o = base;
         o.method = t;
         o.shadows = c.shadows;
         o.refraction = c.refraction ? 8.0f : 0.0f;
+        o.force = t == c.method ? c.force : effects{};
+        return o;
+      };
+      auto run = [&](render::technique t) -> result<render::frame> {
+        const render::options o = options_of(t);
 #ifdef DSTRANS_HAVE_GL
         if ((*g)->gl) return render::render_gl(s, o, DSTRANS_SHADER_DIR);
 #endif
@@ -207,6 +218,7 @@ int bench(std::vector<std::string> args) {
       // The reference: deferred depth peeling with the same lights, shadows and refraction.
       config rc = c;
       rc.method = T::peeling;
+      rc.force = {};
       if (!references.count(key(rc))) {
         auto ref = c.method == T::peeling ? f : run(T::peeling);
         if (!ref) {
@@ -239,11 +251,21 @@ int bench(std::vector<std::string> args) {
       for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, ref.gbuffer[0][i]).w < 1.0f;
       const error e = compare(f->final_image, ref.final_image, glass);
       const auto [targets, bytes] = targets_and_bytes(c.method);
+      // The memory of the plan's targets at this size (the interlaced pipeline's plan; others by their tables).
+      const pipeline_plan plan = render::plan_of(s, options_of(c.method)).pipeline;
+      std::int64_t memory = 0;
+      for (const planned_target& t : plan.targets)
+        memory += std::int64_t(t.bytes_per_pixel) *
+                  (t.shadow_map ? std::int64_t(base.shadow_size) * base.shadow_size : std::int64_t(base.width) * base.height);
       json rec{{"technique", technique_name(c.method)},
                {"scene", c.scene},
                {"backend", backend},
                {"settings", {{"lights", c.lights}, {"shadows", shadow_name(c.shadows)}, {"refraction", c.refraction},
-                             {"width", base.width}, {"height", base.height}, {"frames", f->frames}}},
+                             {"width", base.width}, {"height", base.height}, {"shadow_size", base.shadow_size},
+                             {"frames", f->frames},
+                             {"forced", c.force.names()}}},
+               {"effects", render::plan_of(s, options_of(c.method)).on.names()},
+               {"memory_bytes", c.method == T::interlaced ? json(memory) : json(nullptr)},
                {"frame_ms", f->frame_ms},
                {"frame_ms_spread", f->frame_ms_spread},
                {"pass_ms", f->pass_ms},

@@ -37,10 +37,10 @@ volume volume_of(const scene& s, const light& l) {
 frame_plan plan_of(const scene& s, const options& o) {
   frame_plan p{};
   effects e = effects_of(scene_features(s));
-  e.bits |= o.force.bits;
   if (o.refraction <= 0.0f) e = e.without(effect::refraction);
   if (o.shadows != shadow_mode::transparent) e = e.without(effect::transparent_shadows);
   if (o.shadows == shadow_mode::off) e = e.without(effect::shadows);
+  e.bits |= o.force.bits;  // forced code runs even where the options leave its effect nothing to do
   p.on = completed(e);
   p.pipeline = plan_pipeline(p.on);
   p.shadows = !p.on.has(effect::shadows)                ? shadow_mode::off

@@ -35,7 +35,8 @@ struct options {
   // Light buffers and the final image in RGBA32F instead of RGBA8: additive light does not saturate at 1
   // and a NaN or infinity stays visible instead of being stored as 0 (for checking a frame's numbers).
   bool float_targets = false;
-  // Effects planned even where the scene does not call for them (the full pipeline, for comparisons).
+  // Effects planned even where the scene or the other options leave them nothing to do (the full
+  // pipeline, for comparisons): refraction of strength 0, say, runs its code and moves no sample.
   effects force;
 };
 

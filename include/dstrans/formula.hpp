@@ -327,8 +327,8 @@ inline const std::vector<formula>& formulas() {
           .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_texel_transparent),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_case),
-      DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_depth).within({"d_p"}, {0.0f, 2.0f}).within("bias", {0.0f, 0.01f}).yields(-0.01f, 1.0f),
-      DSTRANS_FORMULA(dst_transparent_shadow, dst_opaque_shadow)
+      DSTRANS_FORMULA(dst_opaque_shadow, dst_shadow_depth).within({"d_p"}, {0.0f, 2.0f}).within("bias", {0.0f, 0.01f}).yields(-0.01f, 1.0f),
+      DSTRANS_FORMULA(dst_opaque_shadow, dst_opaque_shadow)
           .within("light", {0.0f, 4.0f})
           .within({"d_p", "depth"}, {0.0f, 1.0f})
           .within("bias", {0.0f, 0.01f})

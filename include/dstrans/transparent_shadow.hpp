@@ -34,12 +34,18 @@
 
 #include "detail/shared.hpp"
 
-DSTRANS_SHARED(dst_transparent_shadow,
-DST_FN bool dst_shadow_texel_transparent(vec4 occluder_a, vec4 occluder_b) { return occluder_a.w <= occluder_b.w; }
+DSTRANS_SHARED(dst_opaque_shadow,
 DST_FN float dst_shadow_depth(float d_p, float bias) {
   float d = d_p - bias;
   return isnan(d) || d >= 1.0f ? 1.0f : d;
 }
+DST_FN vec3 dst_opaque_shadow(vec3 light, float d_p, float bias, float depth) {
+  return depth < dst_shadow_depth(d_p, bias) ? vec3(0.0f) : light;
+}
+)
+
+DSTRANS_SHARED(dst_transparent_shadow,
+DST_FN bool dst_shadow_texel_transparent(vec4 occluder_a, vec4 occluder_b) { return occluder_a.w <= occluder_b.w; }
 DST_FN int dst_shadow_case(float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b, vec4 occluder_b) {
   float d = dst_shadow_depth(d_p, bias);
   bool a_transparent = dst_shadow_texel_transparent(occluder_a, occluder_b);
@@ -66,8 +72,5 @@ DST_FN vec3 dst_transparent_shadow(vec3 light, float d_p, float bias, float dept
 DST_FN vec3 dst_transmitted_shadow(vec3 light, float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b,
                                    vec4 occluder_b) {
   return dst_shadowed_light(light, true, d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
-}
-DST_FN vec3 dst_opaque_shadow(vec3 light, float d_p, float bias, float depth) {
-  return depth < dst_shadow_depth(d_p, bias) ? vec3(0.0f) : light;
 }
 )

@@ -16,38 +16,11 @@
 #include <dstrans/formula.hpp>
 
 #include "../agreement.hpp"
+#include "run_tool.hpp"
 
 using json = nlohmann::ordered_json;
 
 namespace {
-
-struct run_result {
-  int status;
-  std::string out;
-};
-
-// Runs the dstrans tool with `args`, feeding `input` on stdin.
-run_result run(const std::string& args, const std::string& input) {
-  // One file per process: CTest runs test cases in parallel.
-  const std::string in_path = std::string(DSTRANS_TEST_DIR) + "/eval_input_" + std::to_string(getpid()) + ".jsonl";
-  std::ofstream(in_path) << input;
-  const std::string cmd = std::string(DSTRANS_TOOL) + " " + args + " < " + in_path + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  REQUIRE(pipe);
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-std::vector<json> lines(const std::string& text) {
-  std::vector<json> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(json::parse(line));
-  return out;
-}
 
 // A random JSON value of `type` as --list --json names it, within the argument's domain, with 0 and 1
 // mixed in.

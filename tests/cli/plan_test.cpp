@@ -1,0 +1,109 @@
+// dstrans plan and dstrans gen pipeline end to end (issue 7): a scene without glass plans a plain deferred
+// pipeline, and each step of the ladder (a pane, a refractive pane, a spot light that sees it) adds
+// exactly its effect's switches and targets; every shader gen pipeline writes compiles as it is (the
+// camera stands within the spot light's reach, so its light pass is the full-screen variant).
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+
+#include "run_tool.hpp"
+
+using json = nlohmann::ordered_json;
+
+namespace {
+
+// The ladder of tests/effect_scenes.hpp as a scene file: `glass` adds a pane out of the spot light's cone,
+// `refractive` makes it refract, `seen` turns the spot light to it.
+std::string ladder_scene(bool glass, bool refractive, bool seen) {
+  const std::string pane = glass ? R"(, {"shape": "pane", "size": [1.2, 1.0], "position": [-1.2, 1.0, 0.5], "material": "glass"})" : "";
+  const std::string direction = seen ? "[-3.2, -2.0, 0.5]" : "[-0.5, -3.0, -1.0]";
+  const std::string path = std::string(DSTRANS_TEST_DIR) + "/ladder_" + std::to_string(glass) + std::to_string(refractive) +
+                           std::to_string(seen) + ".json";
+  std::ofstream(path) << R"({"camera": {"position": [0, 1.5, 5], "target": [0, 1, 0]},
+    "materials": {"floor": {"diffuse": [0.8, 0.8, 0.8]},
+                  "glass": {"diffuse": [0.2, 0.5, 1.0], "alpha": 0.4, "refractive": )"
+                      << (refractive ? "true" : "false") << R"(}},
+    "objects": [{"shape": "box", "size": [8, 0.02, 8], "position": [0, 0.01, 0], "material": "floor"})"
+                      << pane << R"(],
+    "lights": [{"type": "spot", "position": [2, 3, 0], "direction": )"
+                      << direction << R"(, "range": 8, "inner_angle": 15, "outer_angle": 25, "shadows": true}]})";
+  return path;
+}
+
+struct plan_facts {
+  std::set<std::string> effects, switches, targets;
+};
+
+plan_facts plan_of(const std::string& scene) {
+  const auto r = run("plan " + scene + " --json", "");
+  INFO(r.out);
+  REQUIRE(r.status == 0);
+  const json p = json::parse(r.out);
+  plan_facts f;
+  for (const json& e : p["effects"]) f.effects.insert(e.get<std::string>());
+  for (const json& pass : p["passes"])
+    for (const json& s : pass["switches"]) f.switches.insert(pass["name"].get<std::string>() + ": " + s.get<std::string>());
+  for (const json& t : p["targets"]) f.targets.insert(t["name"].get<std::string>());
+  return f;
+}
+
+std::set<std::string> minus(const std::set<std::string>& a, const std::set<std::string>& b) {
+  std::set<std::string> out;
+  for (const std::string& x : a)
+    if (!b.count(x)) out.insert(x);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("plan --json: plain deferred without glass, then exactly one effect more per step", "[cli][plan]") {
+  const plan_facts plain = plan_of(ladder_scene(false, false, false)), pane = plan_of(ladder_scene(true, false, false)),
+                   refractive = plan_of(ladder_scene(true, true, false)), seen = plan_of(ladder_scene(true, true, true));
+  CHECK(plain.effects == std::set<std::string>{"shadows"});
+  CHECK(plain.switches == std::set<std::string>{"shadow: DST_SHADOWS", "light: DST_SHADOWS"});
+  CHECK_FALSE(plain.targets.count("shadow.colour"));
+  CHECK(minus(pane.effects, plain.effects) == std::set<std::string>{"transparency"});
+  CHECK(minus(pane.switches, plain.switches) == std::set<std::string>{"gbuffer: DST_TRANSPARENCY", "compose: DST_TRANSPARENCY"});
+  CHECK(pane.targets == plain.targets);
+  CHECK(minus(refractive.effects, pane.effects) == std::set<std::string>{"refraction"});
+  CHECK(minus(refractive.switches, pane.switches) == std::set<std::string>{"compose: DST_REFRACTION"});
+  CHECK(refractive.targets == pane.targets);
+  CHECK(minus(seen.effects, refractive.effects) == std::set<std::string>{"transparent_shadows"});
+  CHECK(minus(seen.switches, refractive.switches) ==
+        std::set<std::string>{"shadow: DST_TRANSPARENT_SHADOWS", "light: DST_TRANSPARENT_SHADOWS"});
+  CHECK(minus(seen.targets, refractive.targets) == std::set<std::string>{"shadow.colour"});
+  for (const plan_facts* f : {&plain, &pane, &refractive}) CHECK(minus(f->switches, seen.switches).empty());
+}
+
+TEST_CASE("plan explains itself in words, and refuses bad input", "[cli][plan]") {
+  const auto r = run("plan " + ladder_scene(true, false, false), "");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("transparency         objects[1] has material 1 with alpha 0.4"));
+  CHECK_THAT(r.out, Catch::Contains("20 bytes a pixel on screen"));
+  CHECK(run("plan", "").status == 2);
+  CHECK(run("plan a.json --fast", "").status == 2);
+  const auto missing = run("plan /nonexistent/scene.json", "");
+  CHECK(missing.status == 1);
+  CHECK_THAT(missing.out, Catch::Contains("/nonexistent/scene.json"));
+}
+
+TEST_CASE("gen pipeline writes each shader of the plan, each accepted by glslangValidator", "[cli][plan]") {
+  const std::string out = std::string(DSTRANS_TEST_DIR) + "/pipeline_seen";
+  std::filesystem::remove_all(out);
+  const auto r = run("gen pipeline " + ladder_scene(true, true, true) + " --out " + out, "");
+  INFO(r.out);
+  REQUIRE(r.status == 0);
+  std::set<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(out)) {
+    names.insert(e.path().filename().string());
+    const std::string cmd = std::string(GLSLANG_VALIDATOR) + " " + e.path().string() + " > /dev/null";
+    INFO(e.path());
+    CHECK(std::system(cmd.c_str()) == 0);
+  }
+  CHECK(names == std::set<std::string>{"gbuffer_pass.vert", "gbuffer_pass.frag", "shadow_pass.vert", "shadow_pass.frag",
+                                       "light_pass_transparent_shadows_fullscreen.vert",
+                                       "light_pass_transparent_shadows_fullscreen.frag", "compose_pass.vert",
+                                       "compose_pass.frag"});
+}

@@ -1,0 +1,40 @@
+// A ladder of scenes that call for one effect more at each step (issue 7): a room lit by a shadowed spot
+// light and the sun; then a glass pane out of the spot's cone; then the pane refractive; then the spot
+// turned to the pane. Without shadows at step 0 the scene calls for nothing.
+#pragma once
+
+#include <dstrans/scene.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace dstrans::testing {
+
+enum class rung { nothing, shadows, glass, refractive, seen };
+
+inline scene effect_scene(rung r) {
+  scene s;
+  s.view.position = {0.0f, 1.5f, 5.0f};
+  s.view.target = {0.0f, 1.0f, 0.0f};
+  s.materials.push_back({glm::vec3(0.8f), 1.0f, 0.2f, 16.0f, false});                       // floor
+  s.materials.push_back({glm::vec3(0.8f, 0.2f, 0.1f), 1.0f, 0.5f, 32.0f, false});           // red box
+  s.materials.push_back({glm::vec3(0.2f, 0.5f, 1.0f), 0.4f, 0.9f, 64.0f, r >= rung::refractive});  // glass
+  s.objects.push_back({shape_box({8.0f, 0.02f, 8.0f}), glm::translate(glm::mat4(1.0f), {0.0f, 0.01f, 0.0f}), 0});
+  s.objects.push_back({shape_box({0.6f, 0.8f, 0.6f}), glm::translate(glm::mat4(1.0f), {1.0f, 0.4f, -1.0f}), 1});
+  if (r >= rung::glass)
+    s.objects.push_back({shape_pane({1.2f, 1.0f}), glm::translate(glm::mat4(1.0f), {-1.2f, 1.0f, 0.5f}), 2});
+  light sun;
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.2f));
+  sun.intensity = 0.3f;
+  light spot;
+  spot.kind = light_kind::spot;
+  spot.position = {2.0f, 3.0f, 0.0f};
+  spot.direction = glm::normalize(r >= rung::seen ? glm::vec3(-3.2f, -2.0f, 0.5f) : glm::vec3(-0.5f, -3.0f, -1.0f));
+  spot.range = 8.0f;
+  spot.inner_angle = 15.0f;
+  spot.outer_angle = 25.0f;
+  spot.intensity = 1.5f;
+  spot.shadows = r >= rung::shadows;
+  s.lights = {sun, spot};
+  return s;
+}
+
+}  // namespace dstrans::testing

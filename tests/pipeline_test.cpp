@@ -1,0 +1,161 @@
+// Issue 7, without a GPU: the effects a scene calls for, the plan they give at compile time and at run
+// time, and the pass shaders' switches resolved out of the GLSL text.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <set>
+
+#include <dstrans/glsl.hpp>
+#include <dstrans/pipeline.hpp>
+
+#include "effect_scenes.hpp"
+
+using namespace dstrans;
+using testing::effect_scene;
+using testing::rung;
+
+namespace {
+
+// What a plan has: its target names, and each pass as "name: switch switch ...".
+std::set<std::string> targets_of(const pipeline_plan& p) {
+  std::set<std::string> out;
+  for (const planned_target& t : p.targets) out.insert(t.name);
+  return out;
+}
+std::set<std::string> switches_of(const pipeline_plan& p) {
+  std::set<std::string> out;
+  for (const planned_pass& pass : p.passes)
+    for (const std::string& s : pass.switches) out.insert(pass.name + ": " + s);
+  return out;
+}
+std::set<std::string> minus(const std::set<std::string>& a, const std::set<std::string>& b) {
+  std::set<std::string> out;
+  for (const std::string& x : a)
+    if (!b.count(x)) out.insert(x);
+  return out;
+}
+
+}  // namespace
+
+// The compile-time plan: figures are constants, and what an absent effect needs is not there.
+using plain = pipeline<effect_set<>>;
+using everything = pipeline<effect_set<effect::transparency, effect::refraction, effect::shadows, effect::transparent_shadows>>;
+static_assert(plain::screen_bytes_per_pixel == 20 && plain::shadow_bytes_per_texel == 0 && !plain::interlaced);
+static_assert(everything::shadow_bytes_per_texel == 8 && everything::has_shadow_colour && everything::refracts);
+static_assert(pipeline<effect_set<effect::shadows>>::shadow_bytes_per_texel == 4);
+
+TEST_CASE("each rung of the ladder calls for exactly one effect more, with a reason", "[pipeline][features]") {
+  const rung rungs[] = {rung::nothing, rung::shadows, rung::glass, rung::refractive, rung::seen};
+  const effect added[] = {effect::shadows, effect::transparency, effect::refraction, effect::transparent_shadows};
+  CHECK(scene_features(effect_scene(rung::nothing)).empty());
+  for (int i = 0; i < 4; ++i) {
+    const auto before = scene_features(effect_scene(rungs[i])), after = scene_features(effect_scene(rungs[i + 1]));
+    INFO("rung " << i + 1);
+    CHECK(effects_of(after) == effects_of(before).with(added[i]));
+    CHECK_FALSE(effects_of(before).has(added[i]));
+    for (const feature& f : after) CHECK_FALSE(f.why.empty());
+  }
+  CHECK(scene_features(effect_scene(rung::seen)).back().why ==
+        "lights[1] casts shadows and its cone reaches objects[2], which is transparent");
+}
+
+TEST_CASE("the plans of neighbouring rungs differ by exactly the added effect's targets and switches", "[pipeline]") {
+  auto plan = [](rung r) { return plan_pipeline(effects_of(scene_features(effect_scene(r)))); };
+  const pipeline_plan nothing = plan(rung::nothing), shadows = plan(rung::shadows), glass = plan(rung::glass),
+                      refractive = plan(rung::refractive), seen = plan(rung::seen);
+  // A scene with no glass and no shadows: plain deferred shading.
+  CHECK(nothing.passes.size() == 3);
+  CHECK(switches_of(nothing).empty());
+  CHECK(targets_of(nothing) == std::set<std::string>{"gbuffer.RT0", "gbuffer.RT1", "gbuffer.RT2", "gbuffer.RT3", "light.RT0"});
+  CHECK(nothing.bytes_per_pixel == 20);
+  CHECK(minus(targets_of(shadows), targets_of(nothing)) == std::set<std::string>{"shadow.depth"});
+  CHECK(shadows.pass("shadow"));
+  CHECK(minus(switches_of(shadows), switches_of(nothing)) == std::set<std::string>{"shadow: DST_SHADOWS", "light: DST_SHADOWS"});
+  // One glass pane: interlacing in the G-buffer pass and de-interlacing in the compose pass, no target.
+  CHECK(targets_of(glass) == targets_of(shadows));
+  CHECK(minus(switches_of(glass), switches_of(shadows)) ==
+        std::set<std::string>{"gbuffer: DST_TRANSPARENCY", "compose: DST_TRANSPARENCY"});
+  CHECK(targets_of(refractive) == targets_of(glass));
+  CHECK(minus(switches_of(refractive), switches_of(glass)) == std::set<std::string>{"compose: DST_REFRACTION"});
+  // The spot light sees the pane: the shadow map's colour target and Eq. 3.1's lookup.
+  CHECK(minus(targets_of(seen), targets_of(refractive)) == std::set<std::string>{"shadow.colour"});
+  CHECK(minus(switches_of(seen), switches_of(refractive)) ==
+        std::set<std::string>{"shadow: DST_TRANSPARENT_SHADOWS", "light: DST_TRANSPARENT_SHADOWS"});
+  for (const pipeline_plan* p : {&nothing, &shadows, &glass, &refractive, &seen})
+    CHECK(minus(switches_of(*p), switches_of(seen)).empty());
+}
+
+TEST_CASE("the run-time plan of a set is the compile-time plan of that set", "[pipeline]") {
+  const pipeline_plan a = plan_pipeline(effect_set<effect::transparency, effect::shadows>::value);
+  const pipeline_plan b = pipeline<effect_set<effect::transparency, effect::shadows>>::plan();
+  CHECK(targets_of(a) == targets_of(b));
+  CHECK(switches_of(a) == switches_of(b));
+  CHECK(a.on == b.on);
+  // A set missing what an effect depends on is completed.
+  CHECK(plan_pipeline(effect_set<effect::refraction>::value).on == effect_set<effect::transparency, effect::refraction>::value);
+  CHECK(plan_pipeline(effect_set<effect::transparent_shadows>::value).on ==
+        effect_set<effect::shadows, effect::transparent_shadows>::value);
+}
+
+TEST_CASE("a spot light's cone reaches an object by its bounding sphere", "[pipeline][features]") {
+  light l;
+  l.kind = light_kind::spot;
+  l.position = {0.0f, 0.0f, 0.0f};
+  l.direction = {0.0f, 0.0f, -1.0f};
+  l.outer_angle = 10.0f;
+  l.range = 10.0f;
+  l.shadows = true;
+  auto at = [](glm::vec3 p) { return object{shape_pane({1.0f, 1.0f}), glm::translate(glm::mat4(1.0f), p), 0}; };
+  CHECK(light_reaches(l, at({0.0f, 0.0f, -5.0f})));   // on the axis
+  CHECK(light_reaches(l, at({1.2f, 0.0f, -5.0f})));   // beside it, its sphere inside the cone
+  CHECK_FALSE(light_reaches(l, at({3.0f, 0.0f, -5.0f})));
+  CHECK_FALSE(light_reaches(l, at({0.0f, 0.0f, 5.0f})));   // behind
+  CHECK_FALSE(light_reaches(l, at({0.0f, 0.0f, -12.0f})));  // past the range
+  CHECK(light_reaches(l, at({0.0f, 0.0f, 0.2f})));    // around the light
+  scene s;
+  s.materials = {material{}, material{glm::vec3(1.0f), 0.5f}};
+  s.objects = {at({0.0f, 0.0f, -5.0f})};
+  CHECK_FALSE(sees_transparency(s, l));  // opaque
+  s.objects[0].material = 1;
+  CHECK(sees_transparency(s, l));
+  l.shadows = false;
+  CHECK_FALSE(sees_transparency(s, l));
+}
+
+TEST_CASE("add_file resolves #ifdef DST_ switches, keeps other directives, and maps lines", "[pipeline][glsl]") {
+  const std::string path = "pipeline_test_switches.glsl";
+  std::ofstream(path) << "float a;\n"                  // 1
+                         "#ifdef DST_ONE\n"            // 2
+                         "float one;\n"                // 3
+                         "#ifndef DST_TWO\n"           // 4
+                         "float one_not_two;\n"        // 5
+                         "#else\n"                     // 6
+                         "float one_and_two;\n"        // 7
+                         "#endif\n"                    // 8
+                         "#else\n"                     // 9
+                         "float not_one;\n"            // 10
+                         "#endif\n"                    // 11
+                         "#ifdef VULKAN\n"             // 12
+                         "#ifdef DST_TWO\n"            // 13
+                         "float two;\n"                // 14
+                         "#endif\n"                    // 15
+                         "#endif\n";                   // 16
+  auto text = [&](const std::vector<std::string>& on) {
+    glsl::source src;
+    REQUIRE(src.add_file(path, on));
+    return src;
+  };
+  const glsl::source none = text({}), one = text({"DST_ONE"}), both = text({"DST_ONE", "DST_TWO"});
+  CHECK(none.str() == "#version 450\nfloat a;\nfloat not_one;\n#ifdef VULKAN\n#endif\n");
+  CHECK(one.str() == "#version 450\nfloat a;\nfloat one;\nfloat one_not_two;\n#ifdef VULKAN\n#endif\n");
+  CHECK(both.str() == "#version 450\nfloat a;\nfloat one;\nfloat one_and_two;\n#ifdef VULKAN\nfloat two;\n#endif\n");
+  CHECK(both.origin_of(4).line == 7);
+  CHECK(both.origin_of(6).line == 14);
+  std::ofstream(path) << "#if defined(DST_ONE)\n#endif\n";
+  glsl::source bad;
+  const auto r = bad.add_file(path, {});
+  REQUIRE_FALSE(r);
+  CHECK(r.error() == path + ":1: test dstrans switches with #ifdef or #ifndef");
+  std::remove(path.c_str());
+}
