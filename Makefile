@@ -12,10 +12,11 @@ JOBS ?= $(shell nproc)
 # Debian 12 packages: compiler and build, the core's GLM, glslang and SPIRV-Cross for shader checks,
 # Catch2 for the tests; ccache keeps rebuilds cheap.
 # GL through EGL and Vulkan on Mesa (llvmpipe, lavapipe) with the Khronos validation layer, and
-# nlohmann-json for the command line, stb for PNG files, matplotlib for the benchmark's plot.
+# nlohmann-json for the command line, stb for PNG files, matplotlib for the benchmark's plot, GLFW and
+# Xvfb for the viewer and its test.
 PACKAGES := g++ make cmake ccache libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross catch2 \
             libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri mesa-vulkan-drivers libvulkan-dev \
-            vulkan-validationlayers nlohmann-json3-dev libstb-dev python3-matplotlib
+            vulkan-validationlayers nlohmann-json3-dev libstb-dev python3-matplotlib libglfw3-dev xvfb xauth
 
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 

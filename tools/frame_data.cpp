@@ -23,15 +23,15 @@ volume shape_of(const light& l) {
 }
 
 // Whether the camera may be inside the light's volume mesh (conservative).
-bool camera_inside(const scene& s, const light& l) {
+bool camera_inside(const camera& c, const light& l) {
   // The meshes stay within 1.3 times the light's range (sphere_mesh(1) reaches 1.26 at its corners).
   const float reach = shape_of(l) == volume::cone ? l.range / std::cos(glm::radians(l.outer_angle)) : l.range;
-  return glm::length(s.view.position - l.position) < 1.3f * reach;
+  return glm::length(c.position - l.position) < 1.3f * reach;
 }
 }  // namespace
 
-volume volume_of(const scene& s, const light& l) {
-  return shape_of(l) == volume::fullscreen || camera_inside(s, l) ? volume::fullscreen : shape_of(l);
+volume volume_of(const camera& c, const light& l) {
+  return shape_of(l) == volume::fullscreen || camera_inside(c, l) ? volume::fullscreen : shape_of(l);
 }
 
 frame_plan plan_of(const scene& s, const options& o) {
@@ -60,13 +60,15 @@ frame_plan plan_of(const scene& s, const options& o) {
   return p;
 }
 
-frame_block camera_frame(const scene& s, const options& o) {
+frame_block camera_frame(const scene& s, const options& o) { return camera_frame(s.view, s.ambient, o); }
+
+frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o) {
   frame_block f{};
-  f.view = s.view.view();
-  f.view_proj = s.view.projection(float(o.width) / float(o.height)) * f.view;
+  f.view = c.view();
+  f.view_proj = c.projection(float(o.width) / float(o.height)) * f.view;
   f.inv_view_proj = glm::inverse(f.view_proj);
-  f.camera_position = glm::vec4(s.view.position, 1.0f);
-  f.ambient = glm::vec4(s.ambient, 0.0f);
+  f.camera_position = glm::vec4(c.position, 1.0f);
+  f.ambient = glm::vec4(ambient, 0.0f);
   f.size = {o.width, o.height, o.shadow_size, o.shadow_size};
   f.params = {o.refraction, o.shadow_bias, 0.0f, 0.0f};
   return f;

@@ -80,6 +80,8 @@ struct light_block {
 
 // The camera's frame block for an image of `o.width` x `o.height`.
 frame_block camera_frame(const scene& s, const options& o);
+// The same for camera `c` (a viewer's, moving from frame to frame).
+frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o);
 // The same, seen from spot light `l` (its shadow map's view and projection).
 frame_block light_frame(const scene& s, const light& l, const options& o);
 std::vector<material_block> material_blocks(const scene& s);
@@ -89,6 +91,6 @@ std::vector<light_block> light_blocks(const scene& s, const options& o);
 // the far plane are clipped away and their pixels lose the light; a full-screen triangle cannot miss
 // any, and attenuation and falloff leave the pixels beyond the light's reach at zero.
 enum class volume { fullscreen, sphere, cone };
-volume volume_of(const scene& s, const light& l);
+volume volume_of(const camera& c, const light& l);
 
 }  // namespace dstrans::render

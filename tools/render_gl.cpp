@@ -52,7 +52,7 @@ void bind_light_index(GLuint vao, GLuint indices) {
 
 }  // namespace
 
-result<frame> render_gl(const scene& s, const options& o, const std::string& shader_dir) {
+result<frame> render_gl(const scene& s, const options& o, const std::string& shader_dir, const frame_hooks* hooks) {
   resources r;
   gl::state_guard keep;
   const frame_plan plan = plan_of(s, o);
@@ -196,8 +196,13 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   };
   const float clear_far[4] = {1.0f, 1.0f, 1.0f, 1.0f}, clear_opaque_black[4] = {0.0f, 0.0f, 0.0f, 1.0f},
               clear_zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  for (int n = 0; n < std::max(o.frames, 1); ++n) {
+  dstrans::camera view = s.view;
+  for (int n = 0; hooks ? hooks->before(n, view) : n < std::max(o.frames, 1); ++n) {
     current.clear();
+    if (hooks) {
+      const frame_block moved = camera_frame(view, s.ambient, o);
+      glNamedBufferSubData(frame_ubo, 0, sizeof moved, &moved);
+    }
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glFrontFace(GL_CCW);
@@ -309,7 +314,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
           if (shadowed)
             for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
               glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
-          const volume v = volume_of(s, l);
+          const volume v = volume_of(view, l);
           glUseProgram(light_progs[int(lookup)][v == volume::fullscreen ? 0 : 1]);
           if (v == volume::fullscreen) {
             glDisable(GL_CULL_FACE);
@@ -348,7 +353,9 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       gl::draw_fullscreen(fullscreen_vao);
     });
     frames.push_back(current);
+    if (hooks) hooks->after(final_target->framebuffer, current);
   }
+  if (frames.empty()) return failure{"no frame was drawn"};
   summarize(frames, out);
 
   const int w = o.width, h = o.height;

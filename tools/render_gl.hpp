@@ -2,6 +2,8 @@
 // accumulation with transparent shadow maps, compose with refraction. Draws in the current context.
 #pragma once
 
+#include <functional>
+#include <map>
 #include <string>
 
 #include <dstrans/result.hpp>
@@ -12,7 +14,17 @@
 
 namespace dstrans::render {
 
-// One frame of `s`; `shader_dir` holds the pass shaders (shaders/glsl).
-result<frame> render_gl(const scene& s, const options& o, const std::string& shader_dir);
+// What an interactive caller (examples/viewer) does around each frame: `before` may move the camera and
+// returns false to stop (it is asked before frame 0 too); `after` gets the framebuffer that holds the
+// final image (row 0 at the top) and the frame's pass times.
+struct frame_hooks {
+  std::function<bool(int frame, camera& view)> before;
+  std::function<void(unsigned framebuffer, const std::map<std::string, double>& pass_ms)> after;
+};
+
+// One frame of `s` (o.frames frames, or as many as hooks->before allows); `shader_dir` holds the pass
+// shaders (shaders/glsl).
+result<frame> render_gl(const scene& s, const options& o, const std::string& shader_dir,
+                        const frame_hooks* hooks = nullptr);
 
 }  // namespace dstrans::render

@@ -437,7 +437,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         });
         continue;
       }
-      const volume v = volume_of(s, l);
+      const volume v = volume_of(s.view, l);
       const int vol = v == volume::fullscreen ? 0 : 1;
       const vk::pipeline& p = light_pipes[int(lookup)][vol];
       const compiled& sh = light_shaders[int(lookup)][vol];

@@ -1,0 +1,230 @@
+// The dstrans viewer: any scene file in a GLFW window, drawn by the reference OpenGL renderer
+// (tools/render_gl), with an orbit camera, keys for every effect and technique, and the GPU time of each
+// pass in the window title.
+//
+//   viewer examples/scenes/pane.json                 # until the window closes
+//   viewer examples/scenes/pane.json --frames 3      # three frames, the last title on stdout, then exit
+//   viewer examples/scenes/pane.json --frames 1 --out window.png   # and what the window showed
+//
+// Mouse: drag to orbit, scroll to zoom. Keys: 1-4 technique (interlaced, peeling, forward, forward with
+// depth); S shadows (off, opaque, transparent); R refraction on/off; T transmittance (thesis, physical);
+// F the full pipeline (every effect planned, whether the scene calls for it or not); Esc quits.
+// A key that changes the plan rebuilds the renderer; orbiting only moves the camera.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+#include <GLFW/glfw3.h>
+#include <stb/stb_image_write.h>
+
+#include <render_gl.hpp>
+#include <scene_json.hpp>
+
+namespace {
+
+using namespace dstrans;
+
+const char* const usage = "usage: viewer <scene.json> [--frames N [--out window.png]] [--width W] [--height H]\n";
+
+// What the keys change; a change asks for a new renderer.
+struct settings {
+  render::options o;
+  bool changed = false;
+};
+
+// An orbit around the scene camera's target.
+struct orbit {
+  glm::vec3 target{0.0f};
+  float distance = 5.0f, yaw = 0.0f, pitch = 0.3f;
+  void from(const camera& c) {
+    target = c.target;
+    const glm::vec3 d = c.position - c.target;
+    distance = glm::length(d);
+    yaw = std::atan2(d.x, d.z);
+    pitch = std::asin(glm::clamp(d.y / distance, -1.0f, 1.0f));
+  }
+  void place(camera& c) const {
+    c.target = target;
+    c.position = target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+  }
+};
+
+struct viewer_state {
+  settings now;
+  orbit eye;
+  bool dragging = false;
+  double last_x = 0.0, last_y = 0.0;
+};
+
+const char* technique_name(render::technique t) {
+  switch (t) {
+    case render::technique::interlaced: return "interlaced";
+    case render::technique::peeling: return "peeling";
+    case render::technique::forward: return "forward";
+    case render::technique::forward_depth: return "forward-depth";
+  }
+  return "?";
+}
+const char* shadow_name(render::shadow_mode m) {
+  return m == render::shadow_mode::off ? "off" : m == render::shadow_mode::opaque ? "opaque" : "transparent";
+}
+
+void on_key(GLFWwindow* w, int key, int, int action, int) {
+  if (action != GLFW_PRESS) return;
+  auto* st = static_cast<viewer_state*>(glfwGetWindowUserPointer(w));
+  render::options& o = st->now.o;
+  switch (key) {
+    case GLFW_KEY_1: o.method = render::technique::interlaced; break;
+    case GLFW_KEY_2: o.method = render::technique::peeling; break;
+    case GLFW_KEY_3: o.method = render::technique::forward; break;
+    case GLFW_KEY_4: o.method = render::technique::forward_depth; break;
+    case GLFW_KEY_S: o.shadows = render::shadow_mode((int(o.shadows) + 1) % 3); break;
+    case GLFW_KEY_R: o.refraction = o.refraction > 0.0f ? 0.0f : 8.0f; break;
+    case GLFW_KEY_T: o.physical_transmittance = !o.physical_transmittance; break;
+    case GLFW_KEY_F: o.force = o.force == effects{} ? effects::all() : effects{}; break;
+    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); return;
+    default: return;
+  }
+  st->now.changed = true;
+}
+
+void on_button(GLFWwindow* w, int button, int action, int) {
+  auto* st = static_cast<viewer_state*>(glfwGetWindowUserPointer(w));
+  if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+  st->dragging = action == GLFW_PRESS;
+  glfwGetCursorPos(w, &st->last_x, &st->last_y);
+}
+
+void on_move(GLFWwindow* w, double x, double y) {
+  auto* st = static_cast<viewer_state*>(glfwGetWindowUserPointer(w));
+  if (!st->dragging) return;
+  st->eye.yaw -= float(x - st->last_x) * 0.01f;
+  st->eye.pitch = glm::clamp(st->eye.pitch + float(y - st->last_y) * 0.01f, -1.5f, 1.5f);
+  st->last_x = x;
+  st->last_y = y;
+}
+
+void on_scroll(GLFWwindow* w, double, double dy) {
+  auto* st = static_cast<viewer_state*>(glfwGetWindowUserPointer(w));
+  st->eye.distance = glm::max(0.2f, st->eye.distance * std::pow(0.9f, float(dy)));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string file, out;
+  int frames = 0, width = 960, height = 540;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--out" && i + 1 < argc) {
+      out = argv[++i];
+    } else if ((a == "--frames" || a == "--width" || a == "--height") && i + 1 < argc) {
+      const int v = std::atoi(argv[++i]);
+      (a == "--frames" ? frames : a == "--width" ? width : height) = v;
+      if (v < 1) {
+        std::fprintf(stderr, "viewer: %s must be a whole number of at least 1\n%s", a.c_str(), usage);
+        return 2;
+      }
+    } else if (file.empty() && a.rfind("--", 0) != 0) {
+      file = a;
+    } else {
+      std::fputs(usage, stderr);
+      return 2;
+    }
+  }
+  if (file.empty() || (!out.empty() && frames == 0)) {
+    std::fputs(usage, stderr);
+    return 2;
+  }
+  const auto s = load_scene(file);
+  if (!s) {
+    std::fprintf(stderr, "viewer: %s\n", s.error().c_str());
+    return 1;
+  }
+  if (!glfwInit()) {
+    std::fprintf(stderr, "viewer: GLFW cannot start (no display?)\n");
+    return 1;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+  GLFWwindow* window = glfwCreateWindow(width, height, "dstrans viewer", nullptr, nullptr);
+  if (!window) {
+    std::fprintf(stderr, "viewer: no OpenGL 4.5 core window here\n");
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(0);
+
+  viewer_state st;
+  st.now.o.width = width;
+  st.now.o.height = height;
+  st.now.o.shadow_size = 1024;
+  st.eye.from(s->view);
+  glfwSetWindowUserPointer(window, &st);
+  glfwSetKeyCallback(window, on_key);
+  glfwSetMouseButtonCallback(window, on_button);
+  glfwSetCursorPosCallback(window, on_move);
+  glfwSetScrollCallback(window, on_scroll);
+
+  int drawn = 0;
+  std::string title;
+  render::frame_hooks hooks;
+  hooks.before = [&](int frame, camera& view) {
+    glfwPollEvents();
+    st.eye.place(view);
+    if (frame > 0 && st.now.changed) return false;  // a new plan: the renderer is rebuilt
+    return !glfwWindowShouldClose(window) && (frames == 0 || drawn < frames);
+  };
+  hooks.after = [&](unsigned framebuffer, const std::map<std::string, double>& pass_ms) {
+    // The final image's row 0 is its top; the window's is its bottom.
+    glBlitNamedFramebuffer(framebuffer, 0, 0, 0, width, height, 0, height, width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    if (!out.empty() && drawn + 1 == frames) {
+      // What the window shows, read back before the swap.
+      std::vector<unsigned char> pixels(std::size_t(width) * std::size_t(height) * 4);
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+      glReadBuffer(GL_BACK);
+      glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+      stbi_flip_vertically_on_write(1);
+      if (!stbi_write_png(out.c_str(), width, height, 4, pixels.data(), width * 4))
+        std::fprintf(stderr, "viewer: cannot write %s\n", out.c_str());
+    }
+    glfwSwapBuffers(window);
+    double total = 0.0;
+    std::string passes;
+    for (const auto& [name, ms] : pass_ms) {
+      total += ms;
+      char part[64];
+      std::snprintf(part, sizeof part, "%s%s %.1f", passes.empty() ? "" : ", ", name.c_str(), ms);
+      passes += part;
+    }
+    const render::options& o = st.now.o;
+    char head[256];
+    std::snprintf(head, sizeof head, "dstrans viewer: %s, shadows %s, refraction %s, %s%s: %.1f ms (", technique_name(o.method),
+                  shadow_name(o.shadows), o.refraction > 0.0f ? "on" : "off",
+                  o.physical_transmittance ? "physical" : "thesis", o.force == effects{} ? "" : ", full pipeline", total);
+    title = head + passes + ")";
+    glfwSetWindowTitle(window, title.c_str());
+    ++drawn;
+  };
+  while (!glfwWindowShouldClose(window) && (frames == 0 || drawn < frames)) {
+    st.now.changed = false;
+    const auto f = render::render_gl(*s, st.now.o, DSTRANS_SHADER_DIR, &hooks);
+    if (!f) {
+      std::fprintf(stderr, "viewer: %s\n", f.error().c_str());
+      glfwDestroyWindow(window);
+      glfwTerminate();
+      return 1;
+    }
+  }
+  std::printf("%s\n", title.c_str());
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return 0;
+}
