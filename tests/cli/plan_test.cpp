@@ -6,6 +6,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
 
 #include "run_tool.hpp"
@@ -106,4 +108,26 @@ TEST_CASE("gen pipeline writes each shader of the plan, each accepted by glslang
                                        "light_pass_transparent_shadows_fullscreen.vert",
                                        "light_pass_transparent_shadows_fullscreen.frag", "compose_pass.vert",
                                        "compose_pass.frag"});
+}
+
+TEST_CASE("docs/hooks.md names every shared formula, and docs/integration.md's pictures exist", "[cli][docs]") {
+  auto text_of = [](const std::string& path) {
+    std::ifstream in(std::string(DSTRANS_SOURCE_DIR) + "/" + path);
+    REQUIRE(in);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string hooks = text_of("docs/hooks.md"), guide = text_of("docs/integration.md");
+  const json list = json::parse(run("eval --list --json", "").out);
+  for (const json& f : list) {
+    INFO(f["fn"]);
+    CHECK(hooks.find(f["fn"].get<std::string>()) != std::string::npos);
+  }
+  std::size_t pictures = 0;
+  for (std::size_t at = guide.find("](images/"); at != std::string::npos; at = guide.find("](images/", at + 1)) {
+    const std::string file = guide.substr(at + 2, guide.find(')', at) - at - 2);
+    INFO(file);
+    CHECK(std::filesystem::exists(std::string(DSTRANS_SOURCE_DIR) + "/docs/" + file));
+    ++pictures;
+  }
+  CHECK(pictures >= 5);
 }
