@@ -1,11 +1,11 @@
 # Runs an engine example at each adoption step and checks that every step writes an image and changes
-# the one before: cmake -DEXE=engine_gl -DWORK=dir [-DFILTER=leak_filter.sh] -P engine_steps.cmake
+# the one before: cmake -DEXE=engine_gl -DWORK=dir [-DARGS=--validate] [-DFILTER=leak_filter.sh] -P engine_steps.cmake
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 foreach(step 0 1 2 3)
-  execute_process(COMMAND ${FILTER} ${EXE} --step ${step} --out ${WORK}/step${step}.png RESULT_VARIABLE rc OUTPUT_VARIABLE out
+  execute_process(COMMAND ${FILTER} ${EXE} ${ARGS} --step ${step} --out ${WORK}/step${step}.png RESULT_VARIABLE rc OUTPUT_VARIABLE out
                   ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/step${step}.png OR "${err}" MATCHES "GL:")
+  if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/step${step}.png OR "${err}" MATCHES "GL:|validation")
     message(FATAL_ERROR "step ${step} failed (${rc}):\n${out}\n${err}")
   endif()
   if(step GREATER 0)
