@@ -1,5 +1,7 @@
-# Builds and runs a consumer project: cmake -DKIND=subdir|installed -DSOURCE=... -DBUILD=... -DWORK=... -P consumer.cmake
-# For KIND=installed, dstrans is first installed from BUILD into WORK/prefix.
+# Builds and runs a consumer project: cmake -DKIND=subdir|installed -DSOURCE=... -DBUILD=... -DWORK=...
+#   [-DSANITIZE=-fsanitize=...] [-DFILTER=leak_filter.sh] -P consumer.cmake
+# For KIND=installed, dstrans is first installed from BUILD into WORK/prefix. SANITIZE builds the consumer
+# with those flags (and, with add_subdirectory, dstrans too); FILTER runs it.
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -10,10 +12,13 @@ endfunction()
 
 file(REMOVE_RECURSE ${WORK})
 set(args -DDSTRANS_SOURCE_DIR=${SOURCE})
+if(SANITIZE)
+  list(APPEND args -DCMAKE_CXX_FLAGS=${SANITIZE} -DCMAKE_EXE_LINKER_FLAGS=${SANITIZE})
+endif()
 if(KIND STREQUAL "installed")
   run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
-  set(args -DCMAKE_PREFIX_PATH=${WORK}/prefix)
+  list(APPEND args -DCMAKE_PREFIX_PATH=${WORK}/prefix)
 endif()
 run(${CMAKE_COMMAND} -S ${SOURCE}/tests/consumers/${KIND} -B ${WORK}/build ${args})
 run(${CMAKE_COMMAND} --build ${WORK}/build)
-run(${WORK}/build/consumer)
+run(${FILTER} ${WORK}/build/consumer)
