@@ -80,8 +80,19 @@ inline int tolerance_exponent(const formula& f) {
   return -20;
 }
 
-// Whether `gpu` agrees with `cpu` for a value of type t within 2^exponent of max(1, |cpu|).
-inline bool agrees(const value_type& t, const std::uint32_t* cpu, const std::uint32_t* gpu, int exponent, std::string& why) {
+// Whether two packed words agree field by field within one code (formula::packed_field_bits).
+inline bool codes_agree(std::uint32_t a, std::uint32_t b, int bits) {
+  for (int at = 0; at < 32; at += bits) {
+    const long x = long((a >> at) & ((1ull << bits) - 1u)), y = long((b >> at) & ((1ull << bits) - 1u));
+    if (std::labs(x - y) > 1) return false;
+  }
+  return true;
+}
+
+// Whether `gpu` agrees with `cpu` for a value of type t within 2^exponent of max(1, |cpu|); integers
+// exactly, or within one code per field for results that pack `packed_bits`-wide codes.
+inline bool agrees(const value_type& t, const std::uint32_t* cpu, const std::uint32_t* gpu, int exponent, std::string& why,
+                   int packed_bits = 0) {
   if (t.kind == value_kind::record) {
     for (const auto& fld : t.fields) {
       if (!agrees(fld.second, cpu, gpu, exponent, why)) {
@@ -95,7 +106,7 @@ inline bool agrees(const value_type& t, const std::uint32_t* cpu, const std::uin
   }
   for (int k = 0; k < t.word_count(); ++k) {
     if (!t.is_float()) {
-      if (cpu[k] != gpu[k]) {
+      if (packed_bits ? !codes_agree(cpu[k], gpu[k], packed_bits) : cpu[k] != gpu[k]) {
         why = "component " + std::to_string(k) + ": cpu " + std::to_string(int(cpu[k])) + ", gpu " + std::to_string(int(gpu[k]));
         return false;
       }

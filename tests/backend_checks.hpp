@@ -29,7 +29,7 @@ inline void check_every_formula(const gpu_runner& gpu) {
     std::string first;
     for (std::size_t i = 0; i < calls; ++i) {
       std::string why;
-      if (!agrees(f.result, cpu.data() + i * n, out->data() + i * n, tolerance_exponent(f), why)) {
+      if (!agrees(f.result, cpu.data() + i * n, out->data() + i * n, tolerance_exponent(f), why, f.packed_field_bits)) {
         if (!wrong++) first = "call " + std::to_string(i) + ": " + why;
       }
     }

@@ -58,7 +58,7 @@ int plan(std::vector<std::string> args) {
       for (const planned_pass& pass : p.passes)
         passes.push_back({{"name", pass.name}, {"targets", pass.writes}, {"reads", pass.reads}, {"switches", pass.switches}});
       for (const planned_target& t : p.targets)
-        targets.push_back({{"name", t.name}, {"format", info(t.fmt).name}, {"bytes_per_pixel", t.bytes_per_pixel},
+        targets.push_back({{"name", t.name}, {"format", t.format}, {"bytes_per_pixel", t.bytes_per_pixel},
                            {"size", t.shadow_map ? "shadow map" : "screen"}});
       const json out{{"effects", p.on.names()}, {"reasons", reasons}, {"passes", passes}, {"targets", targets},
                      {"bytes_per_pixel", p.bytes_per_pixel}};
@@ -74,7 +74,7 @@ int plan(std::vector<std::string> args) {
                   joined(pass.writes).c_str(), joined(pass.switches).c_str());
     std::printf("targets:\n");
     for (const planned_target& t : p.targets)
-      std::printf("  %-14s %-8s %2d bytes a %s\n", t.name.c_str(), info(t.fmt).name, t.bytes_per_pixel,
+      std::printf("  %-21s %-8s %3d bytes a %s\n", t.name.c_str(), t.format.c_str(), t.bytes_per_pixel,
                   t.shadow_map ? "shadow-map texel" : "pixel");
     std::printf("%d bytes a pixel on screen\n", p.bytes_per_pixel);
     return 0;

@@ -111,6 +111,7 @@ material read_material(reader& r) {
   m.spec_intensity = r.number("spec_intensity", 0.0f, 0.0f, 1.0f);
   m.spec_power = r.number("spec_power", 16.0f, 0.0f, 255.0f);
   m.refractive = r.boolean("refractive", false);
+  m.hair = r.boolean("hair", false);
   r.finish();
   return m;
 }
@@ -134,8 +135,13 @@ object read_object(reader& r, const std::map<std::string, std::uint32_t>& materi
   } else if (kind == "bottle") {
     const float radius = r.number("radius", tiny, big), height = r.number("height", tiny, big);
     o.geometry = shape_bottle(radius, height, segments());
+  } else if (kind == "hair") {
+    const float radius = r.number("radius", tiny, big), length = r.number("length", tiny, big);
+    const int strands = int(r.number("strands", 1.0f, 100000.0f));
+    o.geometry = shape_hair(radius, strands, length, r.number("width", 0.01f, tiny, big),
+                            int(r.number("segments", 8.0f, 1.0f, 64.0f)), std::uint32_t(r.number("seed", 1.0f, 0.0f, 1e9f)));
   } else {
-    throw bad_field{r.field("shape") + ": unknown shape '" + kind + "' (box, room, pane, sphere, cylinder, bottle)"};
+    throw bad_field{r.field("shape") + ": unknown shape '" + kind + "' (box, room, pane, sphere, cylinder, bottle, hair)"};
   }
   const glm::vec3 position = r.vec<3>("position", glm::vec3(0.0f), -big, big);
   const float yaw = r.number("rotation_y", 0.0f, -360.0f, 360.0f), pitch = r.number("rotation_x", 0.0f, -360.0f, 360.0f);

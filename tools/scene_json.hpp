@@ -7,15 +7,16 @@
 //   {"camera": {"position": [x,y,z], "target": [x,y,z], "fov_y": deg, "near": n, "far": f},
 //    "ambient": [r,g,b],
 //    "materials": {"name": {"diffuse": [r,g,b], "alpha": a, "spec_intensity": s, "spec_power": p,
-//                           "refractive": bool}, ...},
-//    "objects": [{"shape": "box"|"room"|"pane"|"sphere"|"cylinder"|"bottle", "material": "name",
+//                           "refractive": bool, "hair": bool}, ...},
+//    "objects": [{"shape": "box"|"room"|"pane"|"sphere"|"cylinder"|"bottle"|"hair", "material": "name",
 //                 "position": [x,y,z], "rotation_y": deg, "rotation_x": deg (after the turn about Y),
 //                 shape parameters...}, ...],
 //    "lights": [{"type": "directional"|"point"|"spot", "colour": [r,g,b], "intensity": i,
 //                "position": [x,y,z], "direction": [x,y,z], "range": r, "inner_angle": deg,
 //                "outer_angle": deg, "shadows": bool}, ...]}
 // Shape parameters: box and room "size": [x,y,z]; pane "size": [w,h]; sphere "radius"; cylinder and
-// bottle "radius", "height"; sphere, cylinder and bottle "segments" (default 32).
+// bottle "radius", "height"; sphere, cylinder and bottle "segments" (default 32); hair "radius" (of the
+// scalp), "strands", "length", "width" (default 0.01), "segments" (default 8), "seed" (default 1).
 #pragma once
 
 #include <string>

@@ -24,6 +24,7 @@
 #include "fullscreen.hpp"
 #include "glsl.hpp"
 #include "interlace.hpp"
+#include "kbuffer.hpp"
 #include "phong.hpp"
 #include "refraction.hpp"
 #include "surface.hpp"
@@ -207,6 +208,9 @@ struct formula {
   // Every float of the result, for arguments within their domains: finite and within [lo, hi] (the
   // physical range: light and colour at least 0, alpha and factors within [0, 1]).
   float result_lo = -INFINITY, result_hi = INFINITY;
+  // For results that pack quantised codes (a uint of fields this many bits wide): a GPU's division and
+  // fma may put a value on the other side of a rounding boundary, so backends agree within one code.
+  int packed_field_bits = 0;
 
   // This formula with arguments `names` meant to lie in `r`.
   formula within(std::initializer_list<const char*> names, input_range r) && {
@@ -216,6 +220,11 @@ struct formula {
     return std::move(*this);
   }
   formula within(const char* arg, input_range r) && { return std::move(*this).within({arg}, r); }
+  // This formula's uint result packing fields `bits` wide.
+  formula packs(int bits) && {
+    packed_field_bits = bits;
+    return std::move(*this);
+  }
   // This formula promising results within [lo, hi] for arguments within their domains.
   formula yields(float lo, float hi) && {
     result_lo = lo;
@@ -356,6 +365,42 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_compose, dst_compose)
           .within({"o", "t", "ambient"}, {0.0f, 1.0f})
           .within({"light_o", "light_t"}, {0.0f, 4.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_octahedral, dst_octahedral_encode).within("n", unit_vector()).yields(-1.0f, 1.0f),
+      DSTRANS_FORMULA(dst_octahedral, dst_octahedral_decode).within("e", {-1.0f, 1.0f}).yields(-1.0f, 1.0f),
+      DSTRANS_FORMULA(dst_fragment_node, dst_pack_tangent).within("tangent", unit_vector()).packs(16),
+      DSTRANS_FORMULA(dst_fragment_node, dst_unpack_tangent).yields(-1.0f, 1.0f),
+      DSTRANS_FORMULA(dst_fragment_node, dst_pack_colour).within("colour_alpha", {0.0f, 1.0f}).packs(8),
+      DSTRANS_FORMULA(dst_fragment_node, dst_unpack_colour).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_hair, dst_finite3),
+      DSTRANS_FORMULA(dst_hair, dst_sine).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_hair, dst_strand_specular)
+          .within({"t", "h"}, unit_vector())
+          .within("exponent", {1.0f, 128.0f})
+          .yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_hair, dst_hair_cheap)
+          .within({"t", "l"}, unit_vector())
+          .within({"colour", "visibility"}, {0.0f, 1.0f})
+          .within("light", {0.0f, 4.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_hair, dst_hair_full)
+          .within({"t", "l", "v"}, unit_vector())
+          .within({"colour", "visibility"}, {0.0f, 1.0f})
+          .within("light", {0.0f, 4.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_hair, dst_shadow_tap_weight).within({"dx", "dy"}, {-2.0f, 2.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_hair, dst_hair_transmittance)
+          .within({"alpha", "behind"}, {0.0f, 1.0f})
+          .within("density", {0.0f, 64.0f})
+          .yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_layers, dst_tail_add).within({"tail", "colour_alpha"}, {0.0f, 1.0f}).yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_layers, dst_tail_over)
+          .within({"background", "tail", "transmittance"}, {0.0f, 1.0f})
+          .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_layers, dst_over).within({"behind", "front"}, {0.0f, 1.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_layers, dst_wboit_weight).within({"alpha", "depth"}, {0.0f, 1.0f}).yields(0.01f, 3000.0f),
+      DSTRANS_FORMULA(dst_layers, dst_wboit_resolve)
+          .within({"background", "accum", "revealage"}, {0.0f, 1.0f})
           .yields(0.0f, INFINITY),
   };
   return all;

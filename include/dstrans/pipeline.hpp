@@ -22,13 +22,19 @@
 
 namespace dstrans {
 
-// A render target of the plan: a Table's target, or the shadow map's (one set, reused by every light).
+// A render target (or buffer) of the plan: a Table's target, the shadow map's (one set, reused by every
+// light), or the k-buffer's.
 struct planned_target {
-  std::string name;  // "gbuffer.RT0", ..., "light.RT0", "shadow.depth", "shadow.colour"
-  format fmt;
+  std::string name;    // "gbuffer.RT0", ..., "light.RT0", "shadow.depth", "shadow.colour", "kbuffer.heads", ...
+  std::string format;  // as the thesis's tables name formats ("RGBA8"), or "R32UI", or "buffer"
   int bytes_per_pixel;
-  bool shadow_map;   // sized as the shadow map, not the screen
+  bool shadow_map;     // sized as the shadow map, not the screen
 };
+
+// The k-buffer's node pool, in nodes per screen pixel: a pixel with more fragments than the pool has left
+// sends the rest to the tail (S1 keeps every fragment; a pool of 8 per pixel holds hair over a third of
+// the screen at 24 layers).
+constexpr int kbuffer_nodes_per_pixel = 8, kbuffer_node_bytes = 16;
 
 struct planned_pass {
   std::string name;                   // gbuffer, shadow (once per shadow-casting light), light, compose
@@ -63,6 +69,7 @@ struct pipeline {
   static constexpr bool refracts = set.has(effect::refraction);
   static constexpr bool has_shadows = set.has(effect::shadows);
   static constexpr bool has_shadow_colour = set.has(effect::transparent_shadows);
+  static constexpr bool many_layers = set.has(effect::many_layers);
   static constexpr int screen_bytes_per_pixel = thesis_gbuffer::bytes_per_pixel + thesis_light_buffer::bytes_per_pixel;
   static constexpr int shadow_bytes_per_texel = !has_shadows         ? 0
                                                 : has_shadow_colour ? thesis_shadow_map::bytes_per_pixel
@@ -77,7 +84,7 @@ struct pipeline {
       std::vector<std::string> names;
       for (std::size_t i = 0; i < descs.size(); ++i) {
         names.push_back(name + ".RT" + std::to_string(i));
-        p.targets.push_back({names.back(), descs[i].fmt, info(descs[i].fmt).bytes_per_pixel, shadow_map});
+        p.targets.push_back({names.back(), info(descs[i].fmt).name, info(descs[i].fmt).bytes_per_pixel, shadow_map});
       }
       return names;
     };
@@ -85,10 +92,10 @@ struct pipeline {
     const std::vector<std::string> light = add_targets(describe<thesis_light_buffer>(), "light", false);
     std::vector<std::string> shadow;
     if constexpr (has_shadows) {
-      p.targets.push_back({"shadow.depth", format::r32f, info(format::r32f).bytes_per_pixel, true});
+      p.targets.push_back({"shadow.depth", info(format::r32f).name, info(format::r32f).bytes_per_pixel, true});
       shadow.push_back("shadow.depth");
       if constexpr (has_shadow_colour) {
-        p.targets.push_back({"shadow.colour", format::rgba8, info(format::rgba8).bytes_per_pixel, true});
+        p.targets.push_back({"shadow.colour", info(format::rgba8).name, info(format::rgba8).bytes_per_pixel, true});
         shadow.push_back("shadow.colour");
       }
     }
@@ -109,6 +116,23 @@ struct pipeline {
     if constexpr (interlaced) compose.push_back(effect_switch(effect::transparency));
     if constexpr (refracts) compose.push_back(effect_switch(effect::refraction));
     p.passes.push_back({"compose", compose_reads, {"output"}, compose});
+    if constexpr (many_layers) {
+      // S1 after the opaque frame: hair fragments into per-pixel lists (their overflow into the tail
+      // targets), then the resolve over the composed image.
+      const std::vector<std::string> lists{"kbuffer.heads", "kbuffer.nodes"}, tail{"kbuffer.tail", "kbuffer.transmittance"};
+      p.targets.push_back({"kbuffer.heads", "R32UI", 4, false});
+      p.targets.push_back({"kbuffer.nodes", "buffer", kbuffer_nodes_per_pixel * kbuffer_node_bytes, false});
+      p.targets.push_back({"kbuffer.tail", info(format::rgba16f).name, info(format::rgba16f).bytes_per_pixel, false});
+      p.targets.push_back({"kbuffer.transmittance", info(format::r16f).name, info(format::r16f).bytes_per_pixel, false});
+      std::vector<std::string> capture_writes = lists, resolve_reads = lists;
+      capture_writes.insert(capture_writes.end(), tail.begin(), tail.end());
+      resolve_reads.insert(resolve_reads.end(), tail.begin(), tail.end());
+      resolve_reads.push_back("gbuffer.RT3");
+      if (has_shadows) resolve_reads.push_back("shadow.depth");
+      const std::vector<std::string> on{effect_switch(effect::many_layers)};
+      p.passes.push_back({"capture", {"gbuffer.RT3"}, capture_writes, on});
+      p.passes.push_back({"resolve", resolve_reads, {"output"}, on});
+    }
     for (const planned_target& t : p.targets)
       if (!t.shadow_map) p.bytes_per_pixel += t.bytes_per_pixel;
     return p;

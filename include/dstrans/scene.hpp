@@ -31,7 +31,10 @@ struct material {
   float spec_intensity = 0.0f;   // [0, 1]
   float spec_power = 16.0f;      // [0, 255]
   bool refractive = false;
-  bool transparent() const { return alpha < 1.0f; }
+  // Many thin layers (hair, fur, dense smoke): drawn into per-pixel lists and resolved by S1's k-buffer
+  // instead of the interlaced G-buffer; the shape's normals carry the strand tangents.
+  bool hair = false;
+  bool transparent() const { return alpha < 1.0f && !hair; }
 };
 
 enum class light_kind { directional, point, spot };
@@ -188,6 +191,48 @@ inline shape shape_bottle(float radius, float height, int slices) {
   return detail::revolve({{0.0f, 0.0f}, {r * 0.9f, 0.0f}, {r, 0.05f * h}, {r, 0.55f * h}, {r * 0.8f, 0.68f * h},
                           {r * 0.35f, 0.78f * h}, {r * 0.3f, 0.95f * h}, {r * 0.38f, h}, {0.0f, h}},
                          slices);
+}
+
+// Hair: `strands` strands rooted on the upper half of a sphere of `radius` around the origin, each
+// `length` long in `segments` pieces, falling under gravity with a little random curl, drawn as two
+// crossed ribbons `width` wide so that no view sees them edge-on. Normals hold the strand's tangent
+// (material::hair). `seed` picks the strands (the same seed, the same hair on every machine).
+inline shape shape_hair(float radius, int strands, float length, float width, int segments, std::uint32_t seed) {
+  shape s;
+  std::uint32_t state = seed * 747796405u + 2891336453u;
+  auto next = [&state]() {  // PCG-style hash: deterministic across compilers and standard libraries
+    state = state * 747796405u + 2891336453u;
+    std::uint32_t w = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return float((w >> 22u) ^ w) * (1.0f / 4294967296.0f);
+  };
+  const int n = segments < 1 ? 1 : segments;
+  for (int k = 0; k < strands; ++k) {
+    const float phi = 6.2831853f * next(), up = 0.15f + 0.85f * next();  // the upper half, not the bottom
+    const glm::vec3 root = radius * glm::vec3(std::sqrt(1.0f - up * up) * std::cos(phi), up, std::sqrt(1.0f - up * up) * std::sin(phi));
+    glm::vec3 dir = glm::normalize(root), p = root;
+    const glm::vec3 curl = glm::normalize(glm::vec3(next() - 0.5f, next() - 0.5f, next() - 0.5f) + glm::vec3(1e-3f));
+    std::vector<glm::vec3> points{p};
+    for (int i = 0; i < n; ++i) {
+      dir = glm::normalize(dir + glm::vec3(0.0f, -0.35f, 0.0f) + 0.2f * curl);
+      p += dir * (length / float(n));
+      points.push_back(p);
+    }
+    for (int i = 0; i < n; ++i) {
+      const glm::vec3 t = glm::normalize(points[std::size_t(i + 1)] - points[std::size_t(i)]);
+      const glm::vec3 a = glm::normalize(glm::cross(t, std::fabs(t.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+      for (glm::vec3 side : {a, glm::normalize(glm::cross(t, a))}) {
+        const std::uint32_t base = std::uint32_t(s.positions.size());
+        const glm::vec3 h = side * (0.5f * width);
+        for (glm::vec3 q : {points[std::size_t(i)] - h, points[std::size_t(i)] + h, points[std::size_t(i + 1)] + h,
+                            points[std::size_t(i + 1)] - h}) {
+          s.positions.push_back(q);
+          s.normals.push_back(t);
+        }
+        s.indices.insert(s.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+      }
+    }
+  }
+  return s;
 }
 
 }  // namespace dstrans

@@ -13,7 +13,8 @@
 // - shadows: a spot light that casts shadows (shadow pass, depth map, lookup);
 // - transparent_shadows: such a light whose cone reaches a transparent object (the shadow map's colour
 //   target and the lookup of Eq. 3.1). Reaching is decided by the object's bounding sphere against the
-//   cone and range, so it is conservative: an occluded pane still counts.
+//   cone and range, so it is conservative: an occluded pane still counts;
+// - many_layers: an object whose material is hair (per-pixel lists and the k-buffer resolve of S1).
 #pragma once
 
 #include <algorithm>
@@ -27,8 +28,9 @@
 
 namespace dstrans {
 
-enum class effect : unsigned { transparency, refraction, shadows, transparent_shadows };
-constexpr effect all_effects[] = {effect::transparency, effect::refraction, effect::shadows, effect::transparent_shadows};
+enum class effect : unsigned { transparency, refraction, shadows, transparent_shadows, many_layers };
+constexpr effect all_effects[] = {effect::transparency, effect::refraction, effect::shadows, effect::transparent_shadows,
+                                  effect::many_layers};
 
 // The effect's name in plans and reports.
 constexpr const char* effect_name(effect e) {
@@ -37,6 +39,7 @@ constexpr const char* effect_name(effect e) {
     case effect::refraction: return "refraction";
     case effect::shadows: return "shadows";
     case effect::transparent_shadows: return "transparent_shadows";
+    case effect::many_layers: return "many_layers";
   }
   return "";
 }
@@ -48,6 +51,7 @@ constexpr const char* effect_switch(effect e) {
     case effect::refraction: return "DST_REFRACTION";
     case effect::shadows: return "DST_SHADOWS";
     case effect::transparent_shadows: return "DST_TRANSPARENT_SHADOWS";
+    case effect::many_layers: return "DST_MANY_LAYERS";
   }
   return "";
 }
@@ -62,7 +66,7 @@ struct effects {
   constexpr bool operator==(effects o) const { return bits == o.bits; }
   constexpr bool operator!=(effects o) const { return bits != o.bits; }
   // Every effect, in the order of all_effects.
-  static constexpr effects all() { return {(1u << 4) - 1u}; }
+  static constexpr effects all() { return {(1u << 5) - 1u}; }
   std::vector<std::string> names() const {
     std::vector<std::string> out;
     for (effect e : all_effects)
@@ -142,6 +146,8 @@ inline std::vector<feature> scene_features(const scene& s) {
   };
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const std::uint32_t m = s.objects[i].material;
+    if (m < s.materials.size() && s.materials[m].hair)
+      add(effect::many_layers, "objects[" + std::to_string(i) + "] has material " + std::to_string(m) + ", which is hair");
     if (m >= s.materials.size() || !s.materials[m].transparent()) continue;
     const std::string what = "objects[" + std::to_string(i) + "] has material " + std::to_string(m) + " with alpha " +
                              number(s.materials[m].alpha);
