@@ -10,6 +10,9 @@ namespace {
 // Cones wider than this are drawn as spheres: a cone's mesh grows without bound towards 90 degrees.
 constexpr float widest_cone = 60.0f;
 
+// The near plane of a spot light's shadow map (its far plane is the light's range).
+float shadow_near(const light& l) { return std::max(l.range * 1e-3f, 0.01f); }
+
 glm::mat4 spot_view(const light& l) {
   const glm::vec3 up = std::fabs(l.direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
   return glm::lookAtRH(l.position, l.position + l.direction, up);
@@ -60,6 +63,12 @@ frame_plan plan_of(const scene& s, const options& o) {
   return p;
 }
 
+int hair_shadow_light(const frame_plan& p) {
+  for (std::size_t i = p.lookups.size(); i-- > 0;)
+    if (p.lookups[i] != shadow_mode::off) return int(i);
+  return -1;
+}
+
 frame_block camera_frame(const scene& s, const options& o) { return camera_frame(s.view, s.ambient, o); }
 
 frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o) {
@@ -70,7 +79,7 @@ frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o) {
   f.camera_position = glm::vec4(c.position, 1.0f);
   f.ambient = glm::vec4(ambient, 0.0f);
   f.size = {o.width, o.height, o.shadow_size, o.shadow_size};
-  f.params = {o.refraction, o.shadow_bias, 0.0f, 0.0f};
+  f.params = {o.refraction, o.shadow_bias, -1.0f, float(o.kbuffer_k)};
   return f;
 }
 
@@ -80,14 +89,14 @@ frame_block light_frame(const scene& s, const light& l, const options& o) {
   // shadow maps stop at 85 degrees and what lies outside them is lit unshadowed. A 0-degree spot lights
   // only its axis, which a frustum of 1 degree holds (one of 0 degrees has an infinite projection).
   const float half = std::clamp(l.outer_angle, 0.5f, 85.0f);
-  f.view_proj = glm::perspectiveRH_ZO(glm::radians(2.0f * half), 1.0f, std::max(l.range * 1e-3f, 0.01f), l.range) * spot_view(l);
+  f.view_proj = glm::perspectiveRH_ZO(glm::radians(2.0f * half), 1.0f, shadow_near(l), l.range) * spot_view(l);
   return f;
 }
 
 std::vector<material_block> material_blocks(const scene& s) {
   std::vector<material_block> out;
   for (const material& m : s.materials)
-    out.push_back({glm::vec4(m.diffuse, m.alpha), glm::vec4(m.spec_intensity, m.spec_power, m.refractive ? 1.0f : 0.0f, 0.0f)});
+    out.push_back({glm::vec4(m.diffuse, m.alpha), glm::vec4(m.spec_intensity, m.spec_power, m.refractive ? 1.0f : 0.0f, m.hair ? 1.0f : 0.0f)});
   return out;
 }
 
@@ -99,7 +108,8 @@ std::vector<light_block> light_blocks(const scene& s, const options& o) {
     b.position_range = glm::vec4(l.position, l.range);
     b.direction_kind = glm::vec4(l.direction, kind);
     b.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
-    b.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), l.shadows && l.kind == light_kind::spot ? 1.0f : 0.0f, 0, 0);
+    b.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), l.shadows && l.kind == light_kind::spot ? 1.0f : 0.0f,
+                            shadow_near(l), l.range);
     if (l.kind == light_kind::spot) b.shadow_view_proj = light_frame(s, l, o).view_proj;
     switch (shape_of(l)) {
       case volume::fullscreen: b.volume = glm::mat4(1.0f); break;

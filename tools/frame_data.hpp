@@ -2,6 +2,7 @@
 // frame block, std430 for materials and lights), and the per-frame options both backends share.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,11 @@ struct options {
   // Light buffers and the final image in RGBA32F instead of RGBA8: additive light does not saturate at 1
   // and a NaN or infinity stays visible instead of being stored as 0 (for checking a frame's numbers).
   bool float_targets = false;
+  // The k-buffer (many_layers, TECHNIQUES.md S1): how many nearest fragments a pixel shades fully (1 to
+  // 32), and how the rest are shaded.
+  int kbuffer_k = 8;
+  std::uint32_t kbuffer_nodes = 0;  // the node pool's size; 0: kbuffer_nodes_per_pixel a pixel
+  enum class layers { forward, deferred, tailless, cheap } kbuffer_variant = layers::deferred;
   // Effects planned even where the scene or the other options leave them nothing to do (the full
   // pipeline, for comparisons): refraction of strength 0, say, runs its code and moves no sample.
   effects force;
@@ -56,6 +62,8 @@ struct frame_plan {
   }
 };
 frame_plan plan_of(const scene& s, const options& o);
+// The light whose shadow map the hair reads (Eq. 1): the last one drawn, as the maps share targets; -1: none.
+int hair_shadow_light(const frame_plan& p);
 constexpr shadow_mode all_lookups[] = {shadow_mode::off, shadow_mode::opaque, shadow_mode::transparent};
 // How programs and pipelines of a lookup are labelled: "", " opaque shadows", " transparent shadows".
 inline const char* lookup_label(shadow_mode m) {
@@ -66,7 +74,7 @@ struct frame_block {
   glm::mat4 view_proj, inv_view_proj, view;
   glm::vec4 camera_position, ambient;
   glm::ivec4 size;
-  glm::vec4 params;
+  glm::vec4 params;  // refraction strength, shadow bias, the light whose shadow map hair reads (-1: none), k
 };
 
 struct material_block {

@@ -61,6 +61,21 @@ void summarize(const std::vector<std::map<std::string, double>>& frames, frame& 
   out.frame_ms_spread = quantile(totals, 0.75) - quantile(totals, 0.25);
 }
 
+layer_counts count_layers(const frame& f) {
+  layer_counts c;
+  std::size_t total = 0;
+  for (std::uint32_t head : f.kbuffer_heads) {
+    std::size_t n = 0;
+    for (std::uint32_t at = head; at < f.kbuffer_nodes.size() && n <= f.kbuffer_nodes.size(); at = f.kbuffer_nodes[at].w) ++n;
+    if (n == 0) continue;
+    ++c.pixels;
+    total += n;
+    c.max = std::max(c.max, n);
+  }
+  c.mean = c.pixels ? double(total) / double(c.pixels) : 0.0;
+  return c;
+}
+
 result<bool> write_frame(const frame& f, const std::string& dir, const std::string& technique, const std::string& backend) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -77,6 +92,11 @@ result<bool> write_frame(const frame& f, const std::string& dir, const std::stri
   nlohmann::ordered_json j{{"technique", technique}, {"backend", backend}, {"width", f.final_image.width},
                            {"height", f.final_image.height}, {"pass_ms", f.pass_ms}, {"frame_ms", f.frame_ms},
                            {"frame_ms_spread", f.frame_ms_spread}, {"frames", f.frames}};
+  if (!f.kbuffer_heads.empty()) {
+    const layer_counts c = count_layers(f);
+    j["kbuffer"] = {{"nodes", f.kbuffer_nodes.size()}, {"overflow", f.kbuffer_overflow}, {"pixels", c.pixels},
+                    {"mean_layers", c.mean}, {"max_layers", c.max}};
+  }
   std::ofstream out(dir + "/frame.json");
   out << j.dump(2) << "\n";
   if (!out) return failure{dir + "/frame.json: cannot write: " + std::strerror(errno)};

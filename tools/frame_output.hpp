@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include <dstrans/format.hpp>
 #include <dstrans/result.hpp>
 
@@ -28,12 +30,24 @@ struct frame {
   std::vector<std::vector<texel>> gbuffer;
   std::vector<texel> light_buffer;
   std::vector<std::vector<texel>> lit;
+  // The k-buffer as the last frame left it: each pixel's list head (0xffffffff: none), the nodes taken
+  // (depth bits, packed tangent, packed colour, next), and the fragments that found no node.
+  std::vector<std::uint32_t> kbuffer_heads;
+  std::vector<glm::uvec4> kbuffer_nodes;
+  std::uint32_t kbuffer_overflow = 0;
   std::vector<std::pair<std::string, image>> buffers;  // in the order the passes make them
   std::map<std::string, double> pass_ms;  // the median over the frames rendered, per pass
   double frame_ms = 0.0;                   // the median frame (sum of its passes)
   double frame_ms_spread = 0.0;            // the interquartile range of the frame times
   int frames = 0;
 };
+
+// The k-buffer's lists: how many pixels hold fragments, their mean and largest count.
+struct layer_counts {
+  std::size_t pixels = 0, max = 0;
+  double mean = 0.0;
+};
+layer_counts count_layers(const frame& f);
 
 // Fills `out`'s timings from the pass times of each frame rendered.
 void summarize(const std::vector<std::map<std::string, double>>& frames, frame& out);

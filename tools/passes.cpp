@@ -1,6 +1,7 @@
 // Implements passes.hpp.
 #include "passes.hpp"
 
+#include <algorithm>
 #include <vector>
 
 #include <dstrans/fullscreen.hpp>
@@ -61,11 +62,13 @@ result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects o
   return scene_vertex(dir, std::move(p));
 }
 
-result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode) {
+result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode, effects on) {
   pass_sources p;
   add_shadow_layout(p.fragment, mode, glsl::side::write);
   if (mode == shadow_mode::transparent) glsl::add_interlace<I>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, {"shadow.frag.glsl"}, shadow_switches(mode)); !ok) return failure{ok.error()};
+  std::vector<std::string> switches = shadow_switches(mode);
+  if (on.has(effect::many_layers)) switches.push_back(effect_switch(effect::many_layers));
+  if (auto ok = finish(p.fragment, dir, {"shadow.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return scene_vertex(dir, std::move(p));
 }
 
@@ -140,7 +143,7 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
   };
   if (auto ok = add("gbuffer pass", gbuffer_pass(dir, layer::interlaced, plan.on)); !ok) return failure{ok.error()};
   if (plan.shadows != shadow_mode::off)
-    if (auto ok = add("shadow pass", shadow_pass(dir, plan.shadows)); !ok) return failure{ok.error()};
+    if (auto ok = add("shadow pass", shadow_pass(dir, plan.shadows, plan.on)); !ok) return failure{ok.error()};
   for (shadow_mode k : all_lookups)
     for (int vol = 0; vol < 2; ++vol) {
       bool used = false;
@@ -151,7 +154,55 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
       if (auto ok = add(name, light_pass(dir, k, vol == 1, o)); !ok) return failure{ok.error()};
     }
   if (auto ok = add("compose pass", compose_pass(dir, plan.on, o)); !ok) return failure{ok.error()};
+  if (plan.on.has(effect::many_layers)) {
+    if (auto ok = add("capture pass", capture_pass(dir, plan.shadows)); !ok) return failure{ok.error()};
+    if (auto ok = add("resolve pass", resolve_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
+  }
   return out;
+}
+
+// What the k-buffer passes share: the G-buffer's and shadow map's read side, the hair lighting switches.
+void add_layers_inputs(glsl::source& src, shadow_mode shadows, std::vector<std::string>& switches) {
+  glsl::layout_options read;
+  read.sides = glsl::side::read;
+  read.first_binding = gbuffer_binding;
+  glsl::add_layout<thesis_gbuffer>(src, "gbuffer", read);
+  if (shadows != shadow_mode::off) {
+    add_shadow_layout(src, shadows, glsl::side::read);
+    switches.push_back(effect_switch(effect::shadows));
+  }
+  switches.push_back(effect_switch(effect::many_layers));
+}
+
+std::uint32_t kbuffer_capacity(const options& o) {
+  if (o.kbuffer_nodes) return o.kbuffer_nodes;
+  return std::uint32_t(kbuffer_nodes_per_pixel) * std::uint32_t(o.width) * std::uint32_t(o.height);
+}
+
+std::vector<target_desc> kbuffer_tail_targets() {
+  return {{format::rgba16f, {"tail.r", "tail.g", "tail.b", "tail.alpha"}}, {format::r16f, {"optical_depth"}}};
+}
+
+result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows) {
+  pass_sources p;
+  std::vector<std::string> switches;
+  add_layers_inputs(p.fragment, shadows, switches);
+  if (auto ok = finish(p.fragment, dir, {"kbuffer.glsl", "capture.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return scene_vertex(dir, std::move(p));
+}
+
+result<pass_sources> resolve_pass(const std::string& dir, shadow_mode shadows, const options& o) {
+  pass_sources p{glsl::fullscreen_vertex_shader(), {}};
+  std::vector<std::string> switches;
+  add_layers_inputs(p.fragment, shadows, switches);
+  // The forward reference keeps up to 64 fragments in order and shades its tail fully too.
+  const int k = o.kbuffer_variant == options::layers::forward ? 64 : std::clamp(o.kbuffer_k, 1, 32);
+  p.fragment.add("#define DST_K " + std::to_string(k) + "\n", __FILE__, __LINE__);
+  if (o.kbuffer_variant == options::layers::tailless) switches.push_back("DST_LAYERS_TAILLESS");
+  if (o.kbuffer_variant == options::layers::cheap) switches.push_back("DST_LAYERS_CHEAP");
+  if (o.kbuffer_variant == options::layers::forward) switches.push_back("DST_LAYERS_FORWARD");
+  if (auto ok = finish(p.fragment, dir, {"kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return p;
 }
 
 std::vector<target_desc> forward_targets(bool with_depth, bool float_targets) {

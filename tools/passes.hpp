@@ -2,6 +2,7 @@
 // hand-written pass shaders of shaders/glsl/, which bring the shared formulas they call.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <dstrans/gbuffer.hpp>
@@ -39,9 +40,19 @@ struct pass_sources {
 
 // `dir` is the folder of the pass shaders (shaders/glsl).
 result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on);
-result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode);
+result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode, effects on);
 result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, const options& o);
 result<pass_sources> compose_pass(const std::string& dir, effects on, const options& o);
+
+// The k-buffer (many_layers): hair into per-pixel lists (or the tail targets), then the resolve over the
+// frame with the options' k and variant. `shadows` is the shadow map's kind.
+result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows);
+result<pass_sources> resolve_pass(const std::string& dir, shadow_mode shadows, const options& o);
+// Its node pool's size and tail targets.
+std::uint32_t kbuffer_capacity(const options& o);
+std::vector<target_desc> kbuffer_tail_targets();
+// Texture bindings of the tail targets in the resolve pass; image and buffer bindings of the lists.
+constexpr int kbuffer_tail_binding = 14, kbuffer_nodes_binding = 23, kbuffer_heads_binding = 24;
 
 // Every shader variant the deferred pipeline of `plan` compiles for scene `s`, named as its passes and
 // programs are labelled ("gbuffer pass", "light pass transparent shadows volume", ...).

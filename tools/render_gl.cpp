@@ -12,7 +12,7 @@ namespace {
 
 // GL objects of one frame, released however the frame ends.
 struct resources {
-  std::vector<GLuint> buffers, vertex_arrays, programs, framebuffers;
+  std::vector<GLuint> buffers, vertex_arrays, programs, framebuffers, textures;
   std::vector<gl::targets> targets;
   std::vector<gl::mesh> meshes;
   ~resources() {
@@ -22,6 +22,7 @@ struct resources {
     if (!vertex_arrays.empty()) glDeleteVertexArrays(GLsizei(vertex_arrays.size()), vertex_arrays.data());
     for (GLuint p : programs) glDeleteProgram(p);
     if (!framebuffers.empty()) glDeleteFramebuffers(GLsizei(framebuffers.size()), framebuffers.data());
+    if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
   }
   template <class T>
   GLuint buffer(const std::vector<T>& data, const std::string& name) {
@@ -101,9 +102,21 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   }
   GLuint shadow_prog = 0;
   if (any_shadows) {
-    auto p = r.program(shadow_pass(shader_dir, mode), "shadow pass");
+    auto p = r.program(shadow_pass(shader_dir, mode, plan.on), "shadow pass");
     if (!p) return failure{p.error()};
     shadow_prog = *p;
+  }
+
+  // The k-buffer (many layers: hair) after the deferred frame; forward rendering draws no hair.
+  const bool many = plan.on.has(effect::many_layers) && !forward;
+  GLuint capture_prog = 0, resolve_prog = 0;
+  if (many) {
+    auto c = r.program(capture_pass(shader_dir, mode), "capture pass");
+    if (!c) return failure{c.error()};
+    capture_prog = *c;
+    auto rs = r.program(resolve_pass(shader_dir, mode, o), "resolve pass");
+    if (!rs) return failure{rs.error()};
+    resolve_prog = *rs;
   }
 
   // The scene as one mesh, the light indices, the volume meshes, and the blocks of frame.glsl.
@@ -137,7 +150,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   r.meshes.push_back(gl::make_mesh(cone_mesh(16), "spot light volume"));
   for (const gl::mesh& mesh : r.meshes) bind_light_index(mesh.vertex_array, light_index);
 
-  const frame_block camera = camera_frame(s, o);
+  frame_block camera = camera_frame(s, o);
+  camera.params.z = float(hair_shadow_light(plan));
   const GLuint frame_ubo = r.buffer(std::vector<frame_block>{camera}, "camera frame");
   const GLuint shadow_ubo = r.buffer(std::vector<frame_block>{camera}, "light frame");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, materials_binding, r.buffer(material_blocks(s), "materials"));
@@ -183,6 +197,33 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     r.targets.push_back(shadow_map);
   }
 
+  // The lists' heads, the node pool (a header of count, overflow, capacity, then the nodes), the tail.
+  GLuint heads = 0, nodes = 0;
+  gl::targets tail;
+  const std::uint32_t capacity = kbuffer_capacity(o);
+  if (many) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &heads);
+    r.textures.push_back(heads);
+    glTextureStorage2D(heads, 1, GL_R32UI, o.width, o.height);
+    gl::label(GL_TEXTURE, heads, "k-buffer heads");
+    nodes = r.buffer(std::vector<glm::uvec4>(std::size_t(capacity) + 1u), "k-buffer nodes");
+    auto t = gl::make_targets(kbuffer_tail_targets(), o.width, o.height, "k-buffer tail", false);
+    if (!t) return failure{t.error()};
+    tail = *t;
+    r.targets.push_back(tail);
+  }
+  auto bind_layers = [&] {
+    glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+    glBindImageTexture(kbuffer_heads_binding, heads, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kbuffer_nodes_binding, nodes);
+    for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+    for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
+      glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+  };
+
   frame out;
   std::vector<texel> shadow_picture;
   gl::timer timer;
@@ -200,7 +241,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   for (int n = 0; hooks ? hooks->before(n, view) : n < std::max(o.frames, 1); ++n) {
     current.clear();
     if (hooks) {
-      const frame_block moved = camera_frame(view, s.ambient, o);
+      frame_block moved = camera_frame(view, s.ambient, o);
+      moved.params.z = camera.params.z;
       glNamedBufferSubData(frame_ubo, 0, sizeof moved, &moved);
     }
     glDisable(GL_BLEND);
@@ -227,7 +269,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         if (k) glBindTextureUnit(GLuint(peel_depth_binding), gbuffers[0].textures[3]);
         glUseProgram(gbuffer_progs[std::size_t(k)]);
         glBindVertexArray(scene_vao);
-        glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
+        glDrawElements(GL_TRIANGLES, GLsizei(m.hair_first), GL_UNSIGNED_INT, nullptr);
       });
 
     // Forward: the ambient pass fills colour, normal and depth; empty pixels are opaque black.
@@ -247,7 +289,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
         glUseProgram(ambient_prog);
         glBindVertexArray(scene_vao);
-        glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
+        glDrawElements(GL_TRIANGLES, GLsizei(m.hair_first), GL_UNSIGNED_INT, nullptr);
       });
 
     // Lights, each shadowed spot light right after its own shadow pass (one shadow map serves them all),
@@ -297,7 +339,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
               glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
           glUseProgram(forward_light_progs[int(lookup)]);
           glBindVertexArray(scene_vao);
-          glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr, 1,
+          glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.hair_first), GL_UNSIGNED_INT, nullptr, 1,
                                               GLuint(i));
         });
       for (int k = 0; k < layers; ++k)
@@ -352,6 +394,34 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       glUseProgram(compose_prog);
       gl::draw_fullscreen(fullscreen_vao);
     });
+    if (many) {
+      timed("capture", [&] {
+        gl::debug_group g("capture pass");
+        const GLuint empty = 0xffffffffu;
+        glClearTexImage(heads, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
+        const glm::uvec4 header(0u, 0u, capacity, 0u);
+        glNamedBufferSubData(nodes, 0, sizeof header, &header);
+        gl::bind(tail);
+        for (GLint t = 0; t < 2; ++t) glClearNamedFramebufferfv(tail.framebuffer, GL_COLOR, t, clear_zero);
+        bind_layers();
+        glBlendFunc(GL_ONE, GL_ONE);
+        glUseProgram(capture_prog);
+        glBindVertexArray(scene_vao);
+        glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size() - m.hair_first), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(m.hair_first * sizeof(std::uint32_t)));
+      });
+      timed("resolve", [&] {
+        gl::debug_group g("resolve pass");
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        gl::bind(*final_target);
+        bind_layers();
+        // The resolve writes the hair premultiplied, and in alpha what the frame behind keeps.
+        glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+        for (GLuint t = 0; t < 2; ++t) glBindTextureUnit(GLuint(kbuffer_tail_binding) + t, tail.textures[t]);
+        glUseProgram(resolve_prog);
+        gl::draw_fullscreen(fullscreen_vao);
+      });
+    }
     frames.push_back(current);
     if (hooks) hooks->after(final_target->framebuffer, current);
   }
@@ -371,6 +441,15 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
                                                s.view.near_plane, s.view.far_plane)});
   }
   out.final_texels = gl::read_texels(*final_target, 0);
+  if (many) {
+    out.kbuffer_heads.resize(std::size_t(o.width) * std::size_t(o.height));
+    glGetTextureImage(heads, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(out.kbuffer_heads.size() * 4), out.kbuffer_heads.data());
+    std::vector<glm::uvec4> pool(std::size_t(capacity) + 1u);
+    glGetNamedBufferSubData(nodes, 0, GLsizeiptr(pool.size() * sizeof(glm::uvec4)), pool.data());
+    out.kbuffer_overflow = pool[0].y;
+    pool.resize(std::size_t(std::min(pool[0].x, capacity)) + 1u);
+    out.kbuffer_nodes.assign(pool.begin() + 1, pool.end());
+  }
   const format final_format = final_target_desc(o.float_targets).fmt, light_format = light_targets(o.float_targets)[0].fmt;
   out.final_image = to_image(out.final_texels, final_format, w, h, view_as::rgb);
   for (int k = 0; k < layers; ++k) {

@@ -39,7 +39,7 @@ struct resources {
   }
 };
 
-// What a descriptor set binds: buffers and sampled images by binding number.
+// What a descriptor set binds: buffers, and sampled or storage images, by binding number.
 struct bindings {
   std::map<int, VkBuffer> buffers;
   std::map<int, VkImageView> images;
@@ -69,10 +69,11 @@ result<VkDescriptorSet> make_set(resources& r, const vk::pipeline& p, const std:
     w.dstBinding = std::uint32_t(binding);
     w.descriptorCount = 1;
     w.descriptorType = type;
-    if (type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
+    if (type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER || type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
       const auto it = b.images.find(binding);
-      if (it == b.images.end()) return failure{"nothing bound to sampler binding " + std::to_string(binding)};
-      image_infos.push_back({r.sampler, it->second, VK_IMAGE_LAYOUT_GENERAL});
+      if (it == b.images.end()) return failure{"nothing bound to image binding " + std::to_string(binding)};
+      const bool sampled = type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+      image_infos.push_back({sampled ? r.sampler : VK_NULL_HANDLE, it->second, VK_IMAGE_LAYOUT_GENERAL});
       w.pImageInfo = &image_infos.back();
     } else {
       const auto it = b.buffers.find(binding);
@@ -90,6 +91,8 @@ result<VkDescriptorSet> make_set(resources& r, const vk::pipeline& p, const std:
       if (auto ok = write(res.binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER); !ok) return failure{ok.error()};
     for (const auto& res : s->reflection.storage_buffers)
       if (auto ok = write(res.binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER); !ok) return failure{ok.error()};
+    for (const auto& res : s->reflection.storage_images)
+      if (auto ok = write(res.binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE); !ok) return failure{ok.error()};
   }
   vkUpdateDescriptorSets(r.dev.ctx().device, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
   return set;
@@ -198,7 +201,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   result<compiled> shadow_shaders = failure{"unused"};
   vk::pipeline shadow_pipe;
   if (any_shadows) {
-    shadow_shaders = compile(dev, shadow_pass(shader_dir, mode), "shadow pass");
+    shadow_shaders = compile(dev, shadow_pass(shader_dir, mode, plan.on), "shadow pass");
     if (!shadow_shaders) return failure{shadow_shaders.error()};
     auto p = dev.make_graphics_pipeline(*shadow_shaders->vertex, *shadow_shaders->fragment, shadow_map.formats,
                                         "shadow pass", scene_state);
@@ -269,7 +272,54 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   if (!compose_pipe) return failure{compose_pipe.error()};
   r.pipelines.push_back(*compose_pipe);
 
+  // The k-buffer (many layers: hair) after the deferred frame; forward rendering draws no hair. The
+  // capture pass adds overflow into the tail targets; the resolve lays the hair over the final image.
+  const bool many = plan.on.has(effect::many_layers) && !forward;
+  result<compiled> capture_shaders = failure{"unused"}, resolve_shaders = failure{"unused"};
+  vk::pipeline capture_pipe, resolve_pipe;
+  vk::targets tail;
+  vk::image heads;
+  vk::buffer nodes;
+  const std::uint32_t capacity = kbuffer_capacity(o);
+  if (many) {
+    auto t = dev.make_targets(kbuffer_tail_targets(), o.width, o.height, "k-buffer tail", false);
+    if (!t) return failure{t.error()};
+    tail = *t;
+    r.targets.push_back(tail);
+    auto hi = dev.make_storage_image(VK_FORMAT_R32_UINT, o.width, o.height, "k-buffer heads");
+    if (!hi) return failure{hi.error()};
+    heads = *hi;
+    auto nb = dev.make_buffer((VkDeviceSize(capacity) + 1u) * 16u, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "k-buffer nodes");
+    if (!nb) return failure{nb.error()};
+    nodes = *nb;
+    r.buffers.push_back(nodes);
+    capture_shaders = compile(dev, capture_pass(shader_dir, mode), "capture pass");
+    if (!capture_shaders) return failure{capture_shaders.error()};
+    vk::pipeline_state st = scene_state;
+    st.additive = true;
+    auto cp = dev.make_graphics_pipeline(*capture_shaders->vertex, *capture_shaders->fragment, tail.formats, "capture pass", st);
+    if (!cp) return failure{cp.error()};
+    capture_pipe = *cp;
+    r.pipelines.push_back(capture_pipe);
+    resolve_shaders = compile(dev, resolve_pass(shader_dir, mode, o), "resolve pass");
+    if (!resolve_shaders) return failure{resolve_shaders.error()};
+    vk::pipeline_state rs;
+    rs.transmit = true;
+    auto rp = dev.make_graphics_pipeline(*resolve_shaders->vertex, *resolve_shaders->fragment, final_target->formats,
+                                         "resolve pass", rs);
+    if (!rp) return failure{rp.error()};
+    resolve_pipe = *rp;
+    r.pipelines.push_back(resolve_pipe);
+  }
+  struct storage_image_guard {
+    vk::device& dev;
+    vk::image& image;
+    ~storage_image_guard() { dev.destroy(image); }
+  } heads_guard{dev, heads};
+
   // Buffers.
+  frame_block camera = camera_frame(s, o);
+  camera.params.z = float(hair_shadow_light(plan));
   const scene_mesh m = flatten(s);
   std::vector<std::uint32_t> light_ids(s.lights.size());
   for (std::size_t i = 0; i < light_ids.size(); ++i) light_ids[i] = std::uint32_t(i);
@@ -284,7 +334,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       r.buffer(sphere.indices, index_use, "point light volume"),
       r.buffer(cone.positions, vertex_use, "spot light volume"),
       r.buffer(cone.indices, index_use, "spot light volume"),
-      r.buffer(std::vector<frame_block>{camera_frame(s, o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "camera frame"),
+      r.buffer(std::vector<frame_block>{camera}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "camera frame"),
       r.buffer(material_blocks(s), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials"),
       r.buffer(light_blocks(s, o), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights")};
   for (const auto& b : made)
@@ -297,13 +347,14 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   vkCreateSampler(ctx.device, &sci, ctx.allocator, &r.sampler);
-  const std::uint32_t sets = std::uint32_t(4 + 2 * s.lights.size());
+  const std::uint32_t sets = std::uint32_t(6 + 2 * s.lights.size());
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sets},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets},
-                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8 * sets}};
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * sets},
+                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8 * sets},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}};
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pci.maxSets = sets;
-  pci.poolSizeCount = 3;
+  pci.poolSizeCount = 4;
   pci.pPoolSizes = sizes;
   vkCreateDescriptorPool(ctx.device, &pci, ctx.allocator, &r.pool);
 
@@ -322,6 +373,12 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     b.images[peel_depth_binding] = gbuffers[0].colors[3].view;
   }
   bindings common = forward ? base : per_layer[0];
+  bindings layers_set = common;  // the k-buffer passes: the first G-buffer, the lists, the tail
+  if (many) {
+    layers_set.images[kbuffer_heads_binding] = heads.view;
+    layers_set.buffers[kbuffer_nodes_binding] = nodes.handle;
+    for (int t = 0; t < 2; ++t) layers_set.images[kbuffer_tail_binding + t] = tail.colors[std::size_t(t)].view;
+  }
   if (forward)
     for (std::size_t t = 0; t < lit.colors.size(); ++t) common.images[int(t)] = lit.colors[t].view;
   if (peeling) {
@@ -345,12 +402,13 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     }
   const VkDeviceSize zero = 0;
 
-  auto draw_scene = [&](VkCommandBuffer cmd) {
+  // The scene's triangles from `first` to `last` (hair comes last: scene_mesh::hair_first).
+  auto draw_scene = [&](VkCommandBuffer cmd, std::size_t first, std::size_t last) {
     const VkBuffer vb[] = {positions, normals, materials};
     const VkDeviceSize offsets[] = {0, 0, 0};
     vkCmdBindVertexBuffers(cmd, 0, 3, vb, offsets);
     vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, std::uint32_t(m.indices.size()), 1, 0, 0, 0);
+    if (last > first) vkCmdDrawIndexed(cmd, std::uint32_t(last - first), 1, std::uint32_t(first), 0, 0);
   };
   for (int n = 0; n < std::max(o.frames, 1); ++n) {
     current.clear();
@@ -367,7 +425,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
                             {glm::vec4(0, 0, 0, 1), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)});
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
-        draw_scene(cmd);
+        draw_scene(cmd, 0, m.hair_first);
         dev.end_rendering(cmd);
       });
     }
@@ -383,7 +441,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ambient_pipe.handle);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ambient_pipe.layout, 0, 1, &*set, 0, nullptr);
         vkCmdBindVertexBuffers(cmd, 3, 1, &light_index, &zero);
-        draw_scene(cmd);
+        draw_scene(cmd, 0, m.hair_first);
         dev.end_rendering(cmd);
       });
     }
@@ -408,7 +466,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
           dev.begin_rendering(cmd, shadow_map, std::vector<glm::vec4>(shadow_map.colors.size(), glm::vec4(1.0f)));
           vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipe.handle);
           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadow_pipe.layout, 0, 1, &*set, 0, nullptr);
-          draw_scene(cmd);
+          draw_scene(cmd, 0, m.indices.size());
           dev.end_rendering(cmd);
         });
         // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
@@ -432,7 +490,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
           const VkDeviceSize offsets[] = {0, 0, 0, 0};
           vkCmdBindVertexBuffers(cmd, 0, 4, vb, offsets);
           vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
-          vkCmdDrawIndexed(cmd, std::uint32_t(m.indices.size()), 1, 0, 0, std::uint32_t(i));
+          vkCmdDrawIndexed(cmd, std::uint32_t(m.hair_first), 1, 0, 0, std::uint32_t(i));
           dev.end_rendering(cmd);
         });
         continue;
@@ -475,6 +533,35 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       vkCmdDraw(cmd, 3, 1, 0, 0);
       dev.end_rendering(cmd);
     });
+    if (many) {
+      const glm::uvec4 header(0u, 0u, capacity, 0u);
+      std::memcpy(nodes.mapped, &header, sizeof header);  // the last submission has completed
+      auto capture_set = make_set(r, capture_pipe, {capture_shaders->vertex, capture_shaders->fragment}, layers_set);
+      if (!capture_set) return failure{capture_set.error()};
+      timed("capture", [&](VkCommandBuffer cmd) {
+        barrier(cmd);
+        VkClearColorValue empty{};
+        empty.uint32[0] = 0xffffffffu;
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, heads.handle, VK_IMAGE_LAYOUT_GENERAL, &empty, 1, &all);
+        barrier(cmd);
+        dev.begin_rendering(cmd, tail, {glm::vec4(0.0f), glm::vec4(0.0f)});
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, capture_pipe.handle);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, capture_pipe.layout, 0, 1, &*capture_set, 0, nullptr);
+        draw_scene(cmd, m.hair_first, m.indices.size());
+        dev.end_rendering(cmd);
+      });
+      auto resolve_set = make_set(r, resolve_pipe, {resolve_shaders->vertex, resolve_shaders->fragment}, layers_set);
+      if (!resolve_set) return failure{resolve_set.error()};
+      timed("resolve", [&](VkCommandBuffer cmd) {
+        barrier(cmd);
+        dev.begin_rendering(cmd, *final_target, {});
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, resolve_pipe.handle);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, resolve_pipe.layout, 0, 1, &*resolve_set, 0, nullptr);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        dev.end_rendering(cmd);
+      });
+    }
     frames.push_back(current);
   }
   summarize(frames, out);
@@ -504,6 +591,14 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   auto final_texels = dev.read_texels(*final_target, 0);
   if (!final_texels) return failure{final_texels.error()};
   out.final_texels = *final_texels;
+  if (many) {
+    auto head_texels = dev.read_words(heads, o.width, o.height);
+    if (!head_texels) return failure{head_texels.error()};
+    out.kbuffer_heads = *head_texels;
+    const auto* pool = static_cast<const glm::uvec4*>(nodes.mapped);
+    out.kbuffer_overflow = pool[0].y;
+    out.kbuffer_nodes.assign(pool + 1, pool + 1 + std::min(pool[0].x, capacity));
+  }
   out.final_image = to_image(out.final_texels, final_target_desc(o.float_targets).fmt, w, h, view_as::rgb);
   const format light_format = light_targets(o.float_targets)[0].fmt;
   std::vector<std::tuple<std::string, const vk::targets*, int, format, view_as>> wanted;

@@ -233,20 +233,30 @@ result<targets> device::make_targets(const std::vector<target_desc>& layout, int
   return t;
 }
 
+result<image> device::make_storage_image(VkFormat fmt, int width, int height, const std::string& label) {
+  auto img = make_image(fmt, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                        VK_IMAGE_ASPECT_COLOR_BIT, width, height, label);
+  if (!img) return img;
+  submit([&](VkCommandBuffer cmd) {
+    const VkImageMemoryBarrier b = image_barrier(img->handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+                                                 VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &b);
+  });
+  return img;
+}
+
 void device::destroy(targets& t) {
   for (image& c : t.colors) destroy(c);
   destroy(t.depth);
   t = targets{};
 }
 
-result<std::vector<texel>> device::read_texels(const targets& t, int index) {
-  const format f = t.formats[std::size_t(index)];
-  const std::size_t bpp = std::size_t(info(f).bytes_per_pixel), n = std::size_t(t.width) * std::size_t(t.height);
-  auto staging = make_buffer(VkDeviceSize(n * bpp), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "dstrans readback");
+result<std::vector<std::uint8_t>> device::read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height) {
+  const std::size_t n = std::size_t(width) * std::size_t(height) * bytes_per_pixel;
+  auto staging = make_buffer(VkDeviceSize(n), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "dstrans readback");
   if (!staging) return failure{staging.error()};
-  std::vector<texel> out(n);
   submit([&](VkCommandBuffer cmd) {
-    const VkImage img = t.colors[std::size_t(index)].handle;
     // Copies want TRANSFER_SRC_OPTIMAL; the image returns to GENERAL, where dstrans keeps it.
     VkImageMemoryBarrier before = image_barrier(img, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                                 VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT,
@@ -255,7 +265,7 @@ result<std::vector<texel>> device::read_texels(const targets& t, int index) {
                          1, &before);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {std::uint32_t(t.width), std::uint32_t(t.height), 1};
+    region.imageExtent = {std::uint32_t(width), std::uint32_t(height), 1};
     vkCmdCopyImageToBuffer(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging->handle, 1, &region);
     VkImageMemoryBarrier after = image_barrier(img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
                                                VK_ACCESS_TRANSFER_READ_BIT, 0, VK_IMAGE_ASPECT_COLOR_BIT);
@@ -271,8 +281,25 @@ result<std::vector<texel>> device::read_texels(const targets& t, int index) {
                          nullptr);
   });
   const auto* bytes = static_cast<const std::uint8_t*>(staging->mapped);
-  for (std::size_t i = 0; i < n; ++i) std::memcpy(out[i].data(), bytes + i * bpp, bpp);
+  std::vector<std::uint8_t> out(bytes, bytes + n);
   destroy(*staging);
+  return out;
+}
+
+result<std::vector<texel>> device::read_texels(const targets& t, int index) {
+  const std::size_t bpp = std::size_t(info(t.formats[std::size_t(index)]).bytes_per_pixel);
+  auto bytes = read_image(t.colors[std::size_t(index)].handle, bpp, t.width, t.height);
+  if (!bytes) return failure{bytes.error()};
+  std::vector<texel> out(std::size_t(t.width) * std::size_t(t.height));
+  for (std::size_t i = 0; i < out.size(); ++i) std::memcpy(out[i].data(), bytes->data() + i * bpp, bpp);
+  return out;
+}
+
+result<std::vector<std::uint32_t>> device::read_words(const image& img, int width, int height) {
+  auto bytes = read_image(img.handle, 4, width, height);
+  if (!bytes) return failure{bytes.error()};
+  std::vector<std::uint32_t> out(bytes->size() / 4);
+  std::memcpy(out.data(), bytes->data(), bytes->size());
   return out;
 }
 
@@ -394,6 +421,14 @@ result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shad
     if (state.additive) {
       b.blendEnable = VK_TRUE;
       b.srcColorBlendFactor = b.dstColorBlendFactor = b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
+    if (state.transmit) {
+      b.blendEnable = VK_TRUE;
+      b.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+      b.dstColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+      b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+      b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
       b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
     }
   }

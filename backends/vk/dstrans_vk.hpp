@@ -2,7 +2,8 @@
 // engine copies unmodified (dstrans_vk.{hpp,cpp}, with backends/spirv/dstrans_spirv.{hpp,cpp}).
 //
 // Implements, on the engine's instance, device and queue (dstrans::vk::context):
-//   - images for a layout's targets (make_targets), read back as bytes (read_texels);
+//   - images for a layout's targets (make_targets), read back as bytes (read_texels); storage images
+//     (make_storage_image) and mapped buffers (make_buffer);
 //   - GLSL compiled to SPIR-V at run time by glslang, cached by content hash (get_shader);
 //   - graphics and compute pipelines whose descriptor layouts come from SPIRV-Cross reflection, checked
 //     against the layout the pipeline draws into before it is built (make_graphics_pipeline, make_compute_pipeline);
@@ -79,6 +80,9 @@ struct pipeline_state {
   bool depth_test = false, depth_write = false;
   VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
   bool additive = false;  // blend ONE + ONE into every target
+  // Blend colour = source + destination * source alpha, keeping the destination's alpha: the source is a
+  // premultiplied layer whose alpha is the share of the image behind it that shows through.
+  bool transmit = false;
   VkCullModeFlags cull = VK_CULL_MODE_NONE;  // counter-clockwise faces are front faces
 };
 
@@ -109,6 +113,11 @@ class device {
 
   result<buffer> make_buffer(VkDeviceSize size, VkBufferUsageFlags usage, const std::string& label);
   void destroy(buffer& b);
+  // A storage image (read and written by shaders, cleared and copied by transfers), in GENERAL layout.
+  result<image> make_storage_image(VkFormat fmt, int width, int height, const std::string& label);
+  // The 32-bit texels of a storage image such as an R32_UINT one, row by row from the top.
+  result<std::vector<std::uint32_t>> read_words(const image& img, int width, int height);
+  void destroy(image& i);
 
   // `src` as a shader module, compiled once per distinct text and stage; failures carry mapped positions.
   result<const shader*> get_shader(const glsl::source& src, spirv::stage st, const std::string& label);
@@ -140,9 +149,9 @@ class device {
  private:
   explicit device(const context& ctx) : ctx_(ctx) {}
   result<std::uint32_t> memory_type(std::uint32_t bits, VkMemoryPropertyFlags flags) const;
+  result<std::vector<std::uint8_t>> read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height);
   result<image> make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
                            const std::string& label);
-  void destroy(image& i);
   // A pipeline with its layouts made from what `stages` declare, and no VkPipeline yet.
   result<pipeline> pipeline_layout(const std::vector<const shader*>& stages, const std::string& label);
 

@@ -79,22 +79,29 @@ struct scene {
 };
 
 // A whole scene in world space, for one draw call: vertex i has positions[i], normals[i], materials[i].
+// Objects of hair materials come last, from index hair_first on, with tangents for normals.
 struct scene_mesh {
   std::vector<glm::vec3> positions, normals;
   std::vector<std::uint32_t> materials, indices;
+  std::size_t hair_first = 0;
 };
 
 inline scene_mesh flatten(const scene& s) {
   scene_mesh m;
-  for (const object& o : s.objects) {
-    const auto base = std::uint32_t(m.positions.size());
-    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(o.transform)));
-    for (std::size_t i = 0; i < o.geometry.positions.size(); ++i) {
-      m.positions.push_back(glm::vec3(o.transform * glm::vec4(o.geometry.positions[i], 1.0f)));
-      m.normals.push_back(glm::normalize(normal_matrix * o.geometry.normals[i]));
-      m.materials.push_back(o.material);
+  for (const bool hair : {false, true}) {
+    if (hair) m.hair_first = m.indices.size();
+    for (const object& o : s.objects) {
+      if ((o.material < s.materials.size() && s.materials[o.material].hair) != hair) continue;
+      const auto base = std::uint32_t(m.positions.size());
+      // Normals are transformed by the inverse transpose; tangents, along the surface, by the matrix itself.
+      const glm::mat3 normal_matrix = hair ? glm::mat3(o.transform) : glm::transpose(glm::inverse(glm::mat3(o.transform)));
+      for (std::size_t i = 0; i < o.geometry.positions.size(); ++i) {
+        m.positions.push_back(glm::vec3(o.transform * glm::vec4(o.geometry.positions[i], 1.0f)));
+        m.normals.push_back(glm::normalize(normal_matrix * o.geometry.normals[i]));
+        m.materials.push_back(o.material);
+      }
+      for (std::uint32_t i : o.geometry.indices) m.indices.push_back(base + i);
     }
-    for (std::uint32_t i : o.geometry.indices) m.indices.push_back(base + i);
   }
   return m;
 }

@@ -13,12 +13,13 @@ layout(std140, binding = 20) uniform dst_frame {
   vec4 camera_position;
   vec4 ambient;
   ivec4 size;           // xy: the image; zw: the shadow map
-  vec4 params;          // x: refraction strength in pixels, y: shadow depth bias
+  vec4 params;          // x: refraction strength in pixels, y: shadow depth bias, z: the light whose shadow
+                        // map hair reads (-1: none), w: k of the k-buffer
 } frame;
 
 struct dst_material_data {
   vec4 diffuse_alpha;
-  vec4 specular;        // x: intensity, y: power, z: refractive
+  vec4 specular;        // x: intensity, y: power, z: refractive, w: hair (drawn into the k-buffer)
 };
 layout(std430, binding = 21) readonly buffer dst_materials { dst_material_data materials[]; };
 
@@ -26,7 +27,8 @@ struct dst_light_data {
   vec4 position_range;   // xyz, range
   vec4 direction_kind;   // xyz towards where it shines, w: 0 directional, 1 point, 2 spot
   vec4 colour_cos_outer; // rgb times intensity, cos of the outer angle
-  vec4 cos_inner;        // x: cos of the inner angle, y: 1 when it casts shadows
+  vec4 cos_inner;        // x: cos of the inner angle, y: 1 when it casts shadows, z and w: its shadow map's
+                         // near and far planes
   mat4 shadow_view_proj; // world to the shadow map's clip space
   mat4 volume;           // unit sphere or unit cone to world
 };

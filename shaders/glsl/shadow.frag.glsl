@@ -5,8 +5,13 @@ layout(location = 1) flat in uint surface_material;
 
 void main() {
   dst_material_data m = materials[surface_material];
-#ifdef DST_TRANSPARENT_SHADOWS
-  if (m.diffuse_alpha.w < 1.0f && !dst_interlace_keep(dst_pixel(), frame.size.zw)) discard;
+  dst_surface s = dst_material_surface(m, world_normal);
+#ifdef DST_MANY_LAYERS
+  // Hair occludes what lies behind it fully here; hair itself reads its depth with Eq. 1 (resolve pass).
+  if (m.specular.w > 0.5f) s.alpha = 1.0f;
 #endif
-  dst_shadow_write(dst_material_surface(m, world_normal));
+#ifdef DST_TRANSPARENT_SHADOWS
+  if (s.alpha < 1.0f && !dst_interlace_keep(dst_pixel(), frame.size.zw)) discard;
+#endif
+  dst_shadow_write(s);
 }

@@ -1,0 +1,28 @@
+// The capture pass (S1): every hair fragment in front of the opaque frame goes into its pixel's list; when
+// the pool is full it is shaded cheaply and added to the tail targets instead (never dropped). Fragments
+// with alpha below 1/255 are dropped.
+layout(location = 0) in vec3 world_normal;  // the strand's tangent, for hair
+layout(location = 1) flat in uint surface_material;
+layout(location = 0) out vec4 tail;           // premultiplied colour and alpha, added
+layout(location = 1) out float optical_depth;  // -ln(1 - alpha), added: the tail's transmittance is exp(-x)
+
+void main() {
+  dst_material_data m = materials[surface_material];
+  float alpha = m.diffuse_alpha.w;
+  ivec2 p = dst_pixel();
+  if (alpha < 1.0f / 255.0f || gl_FragCoord.z >= dst_gbuffer_read(p).depth) discard;
+  vec3 tangent = normalize(world_normal);
+  vec4 colour_alpha = vec4(m.diffuse_alpha.xyz, alpha);
+  uint node = atomicAdd(kbuffer.count, 1u);
+  if (node < kbuffer.capacity) {
+    uint next = imageAtomicExchange(dst_heads, p, node);
+    kbuffer.nodes[node] = uvec4(floatBitsToUint(gl_FragCoord.z), dst_pack_tangent(tangent), dst_pack_colour(colour_alpha), next);
+    tail = vec4(0.0f);
+    optical_depth = 0.0f;
+    return;
+  }
+  atomicAdd(kbuffer.overflow, 1u);
+  vec3 shaded = dst_hair_lit(dst_world_at(p, gl_FragCoord.z), tangent, colour_alpha, false);
+  tail = dst_tail_add(vec4(0.0f), vec4(shaded, alpha));
+  optical_depth = -log(max(1.0f - alpha, 1.0f / 1024.0f));
+}

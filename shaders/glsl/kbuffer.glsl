@@ -1,0 +1,62 @@
+// The k-buffer (TECHNIQUES.md S1): a list head per pixel and a pool of 16-byte nodes holding shading inputs
+// (depth bits, tangent, colour and alpha, the next node), and the hair's lighting, full (Eq. 2 with Eq. 1's
+// 25 Gaussian shadow taps) or cheap (diffuse, one tap). Shared by the capture and resolve passes.
+layout(binding = 24, r32ui) uniform coherent uimage2D dst_heads;
+layout(std430, binding = 23) coherent buffer dst_kbuffer {
+  uint count;     // nodes asked for; past the capacity, fragments went to the tail targets instead
+  uint overflow;  // fragments that found no node
+  uint capacity;
+  uint unused;
+  uvec4 nodes[];
+} kbuffer;
+const uint dst_no_node = 0xffffffffu;
+
+vec3 dst_world_at(ivec2 pixel, float depth) {
+  vec4 h = frame.inv_view_proj * vec4(dst_pixel_ndc(pixel, frame.size.xy), depth, 1.0f);
+  return h.xyz / h.w;
+}
+
+#ifdef DST_SHADOWS
+// Eq. 1: the share of light that reaches `world` through the hair in front of it, from Gaussian taps of
+// the shadow map (radius 2: 25 taps; radius 0: the centre), 50 strands a unit of distance behind the
+// first occluder.
+float dst_hair_visibility(vec3 world, dst_light_data l, float alpha, int radius) {
+  vec4 h = l.shadow_view_proj * vec4(world, 1.0f);
+  if (!(h.w > 0.0f)) return 1.0f;
+  vec3 ndc = h.xyz / h.w;
+  ivec2 size = frame.size.zw;
+  ivec2 texel = ivec2(floor(vec2(ndc.x * 0.5f + 0.5f, 0.5f - ndc.y * 0.5f) * vec2(size)));
+  float near_plane = l.cos_inner.z, far_plane = l.cos_inner.w;
+  float along = dot(world - l.position_range.xyz, l.direction_kind.xyz);
+  float sum = 0.0f, weights = 0.0f;
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      ivec2 t = clamp(texel + ivec2(dx, dy), ivec2(0), size - 1);
+      float d = dst_shadow_read(t).depth;
+      float occluder = far_plane * near_plane / (far_plane - d * (far_plane - near_plane));  // view depth
+      float w = dst_shadow_tap_weight(float(dx), float(dy));
+      sum += w * dst_hair_transmittance(alpha, 50.0f, along - occluder - 0.01f);
+      weights += w;
+    }
+  return sum / weights;
+}
+#endif
+
+// The light every lamp of the scene gives a hair fragment, plus the ambient term.
+vec3 dst_hair_lit(vec3 world, vec3 tangent, vec4 colour_alpha, bool full) {
+  vec3 v = normalize(frame.camera_position.xyz - world);
+  vec3 sum = frame.ambient.xyz * colour_alpha.xyz;
+  for (int i = 0; i < lights.length(); ++i) {
+    dst_light_data l = lights[i];
+    vec4 reach = dst_light_reach(int(l.direction_kind.w + 0.5f), l.position_range.xyz, l.direction_kind.xyz,
+                                 l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, world);
+    vec3 light = l.colour_cos_outer.xyz * reach.w;
+    float visibility = 1.0f;
+#ifdef DST_SHADOWS
+    if (float(i) == frame.params.z) visibility = dst_hair_visibility(world, l, colour_alpha.w, full ? 2 : 0);
+#endif
+    sum += full ? dst_hair_full(tangent, vec3(reach), v, colour_alpha.xyz, light, visibility)
+                : dst_hair_cheap(tangent, vec3(reach), colour_alpha.xyz, light, visibility);
+  }
+  return sum;
+}

@@ -1,0 +1,75 @@
+// The resolve pass (S1): the k nearest fragments of the pixel's list stay in registers (the core), sorted
+// by depth (ties by their packed tangent and colour, so equal fragments resolve the same way every time);
+// the rest are blended out of order (the tail) with the capture pass's overflow. The core is shaded fully
+// (Eq. 2) unless DST_LAYERS_CHEAP; the tail cheaply, not at all with DST_LAYERS_TAILLESS (its opacity
+// still counts), or fully with DST_LAYERS_FORWARD (the reference, whose core holds every fragment anyway). Written premultiplied over the frame: colour + frame * alpha (alpha = what the frame keeps).
+layout(location = 0) out vec4 colour;
+layout(binding = 14) uniform sampler2D dst_tail;
+layout(binding = 15) uniform sampler2D dst_tail_optical_depth;
+
+bool dst_nearer(uvec4 a, uvec4 b) {  // depths are positive floats: their bits order as uints
+  if (a.x != b.x) return a.x < b.x;
+  if (a.y != b.y) return a.y < b.y;
+  return a.z < b.z;
+}
+
+vec3 dst_shade_node(ivec2 p, uvec4 node, bool full) {
+  return dst_hair_lit(dst_world_at(p, uintBitsToFloat(node.x)), dst_unpack_tangent(node.y), dst_unpack_colour(node.z), full);
+}
+
+void main() {
+  ivec2 p = dst_pixel();
+  uint head = imageLoad(dst_heads, p).x;
+  vec4 tail = texelFetch(dst_tail, p, 0);
+  float transmittance = exp(-texelFetch(dst_tail_optical_depth, p, 0).x);
+  if (head == dst_no_node && !(tail.w > 0.0f)) discard;
+  uvec4 core[DST_K];
+  int n = 0;
+  uint at = head;
+  for (uint steps = 0u; at != dst_no_node && steps < kbuffer.capacity; ++steps) {
+    uvec4 node = kbuffer.nodes[at];
+    at = node.w;
+    uvec4 out_node = node;  // what leaves for the tail: this node, or the core's farthest
+    bool to_tail = true;
+    if (n < DST_K || dst_nearer(node, core[DST_K - 1])) {
+      if (n == DST_K) out_node = core[DST_K - 1];
+      to_tail = n == DST_K;
+      int i = n < DST_K ? n : DST_K - 1;
+      while (i > 0 && dst_nearer(node, core[i - 1])) {
+        core[i] = core[i - 1];
+        --i;
+      }
+      core[i] = node;
+      if (n < DST_K) ++n;
+    }
+    if (to_tail) {
+      vec4 c = dst_unpack_colour(out_node.z);
+#ifdef DST_LAYERS_TAILLESS
+      vec3 shaded = vec3(0.0f);
+#endif
+#ifdef DST_LAYERS_FORWARD
+      vec3 shaded = dst_shade_node(p, out_node, true);
+#endif
+#ifndef DST_LAYERS_TAILLESS
+#ifndef DST_LAYERS_FORWARD
+      vec3 shaded = dst_shade_node(p, out_node, false);
+#endif
+#endif
+      tail = dst_tail_add(tail, vec4(shaded, c.w));
+      transmittance *= 1.0f - c.w;
+    }
+  }
+  vec3 result = dst_tail_over(vec3(0.0f), tail, transmittance);
+  float keeps = transmittance;
+  for (int i = n - 1; i >= 0; --i) {
+    vec4 c = dst_unpack_colour(core[i].z);
+#ifdef DST_LAYERS_CHEAP
+    vec3 shaded = dst_shade_node(p, core[i], false);
+#else
+    vec3 shaded = dst_shade_node(p, core[i], true);
+#endif
+    result = dst_over(result, vec4(shaded, c.w));
+    keeps *= 1.0f - c.w;
+  }
+  colour = vec4(result, keeps);
+}
