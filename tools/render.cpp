@@ -24,6 +24,7 @@ const char* const usage =
     "       [--frames N]   render N frames with the same resources; pass times are their medians\n"
     "       [--transmittance thesis|physical]   light through glass: min(I_L, C) (Eq. 3.2) or I_L C\n"
     "       [--float-targets]   light buffers and the final image in RGBA32F: no saturation, NaN kept\n"
+    "       [--k N] [--layers forward|deferred|tailless|cheap]   hair (S1): fragments shaded fully, and how\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
@@ -44,6 +45,12 @@ int render(std::vector<std::string> args) {
     o.refraction = float(to_int(take_option(args, "--refraction", "8"), 0, 256, "--refraction"));
     o.shadow_size = to_int(take_option(args, "--shadow-size", "1024"), 16, 8192, "--shadow-size");
     o.frames = to_int(take_option(args, "--frames", "1"), 1, 1000, "--frames");
+    o.kbuffer_k = to_int(take_option(args, "--k", "8"), 1, 32, "--k");
+    const std::string layers = take_option(args, "--layers", "deferred");
+    if (layers == "forward") o.kbuffer_variant = render::options::layers::forward;
+    else if (layers == "tailless") o.kbuffer_variant = render::options::layers::tailless;
+    else if (layers == "cheap") o.kbuffer_variant = render::options::layers::cheap;
+    else if (layers != "deferred") throw usage_error{"--layers must be forward, deferred, tailless or cheap, not '" + layers + "'"};
     const std::string bias = take_option(args, "--shadow-bias", "0.0005");
     try {
       std::size_t used = 0;

@@ -55,8 +55,8 @@ vec3 dst_hair_lit(vec3 world, vec3 tangent, vec4 colour_alpha, bool full) {
 #ifdef DST_SHADOWS
     if (float(i) == frame.params.z) visibility = dst_hair_visibility(world, l, colour_alpha.w, full ? 2 : 0);
 #endif
-    sum += full ? dst_hair_full(tangent, vec3(reach), v, colour_alpha.xyz, light, visibility)
-                : dst_hair_cheap(tangent, vec3(reach), colour_alpha.xyz, light, visibility);
+    if (full) sum += dst_hair_full(tangent, vec3(reach), v, colour_alpha.xyz, light, visibility);
+    else sum += dst_hair_cheap(tangent, vec3(reach), colour_alpha.xyz, light, visibility);
   }
   return sum;
 }

@@ -24,6 +24,7 @@ void main() {
   float transmittance = exp(-texelFetch(dst_tail_optical_depth, p, 0).x);
   if (head == dst_no_node && !(tail.w > 0.0f)) discard;
   uvec4 core[DST_K];
+  for (int i = 0; i < DST_K; ++i) core[i] = uvec4(dst_no_node);  // Mesa warns of reads it cannot prove written
   int n = 0;
   uint at = head;
   for (uint steps = 0u; at != dst_no_node && steps < kbuffer.capacity; ++steps) {
@@ -32,12 +33,15 @@ void main() {
     uvec4 out_node = node;  // what leaves for the tail: this node, or the core's farthest
     bool to_tail = true;
     if (n < DST_K || dst_nearer(node, core[DST_K - 1])) {
-      if (n == DST_K) out_node = core[DST_K - 1];
+      // Shift the farther ones back (the farthest leaves when the core is full) and put it in the gap.
+      // Written without `i > 0 && f(core[i - 1])`: Mesa's GL compiler read core[-1] there.
+      int last = n < DST_K ? n : DST_K - 1;
+      if (n == DST_K) out_node = core[last];
       to_tail = n == DST_K;
-      int i = n < DST_K ? n : DST_K - 1;
-      while (i > 0 && dst_nearer(node, core[i - 1])) {
+      int i = last;
+      for (; i > 0; --i) {
+        if (!dst_nearer(node, core[i - 1])) break;
         core[i] = core[i - 1];
-        --i;
       }
       core[i] = node;
       if (n < DST_K) ++n;
