@@ -116,6 +116,86 @@ error compare(const render::image& a, const render::image& ref, const std::vecto
   return {rmse, m ? std::sqrt(masked / double(m)) : 0.0, rmse > 0.0 ? 20.0 * std::log10(255.0 / rmse) : INFINITY};
 }
 
+const char* layers_name(render::options::layers v) {
+  switch (v) {
+    case render::options::layers::forward: return "forward";
+    case render::options::layers::deferred: return "deferred";
+    case render::options::layers::tailless: return "tailless";
+    case render::options::layers::cheap: return "cheap";
+    case render::options::layers::wboit: return "wboit";
+  }
+  return "?";
+}
+
+// The hair scene seen from `zoom` times closer to the camera's target (S1 measured four zoom levels).
+scene zoomed(const scene& s, float zoom) {
+  scene out = s;
+  out.view.position = s.view.target + (s.view.position - s.view.target) / zoom;
+  return out;
+}
+
+// S1's table (TECHNIQUES.md): every variant at every k on hair.json at four zooms against the forward
+// reference over hair pixels, with weighted blended OIT beside, as result records.
+template <class Draw>
+result<json> layers_records(const scene& hair, const render::options& base, bool quick, const std::string& backend, Draw&& draw) {
+  using L = render::options::layers;
+  json records = json::array();
+  const std::vector<float> zooms = quick ? std::vector<float>{1.0f} : std::vector<float>{0.75f, 1.0f, 1.5f, 2.5f};
+  const std::vector<int> ks = quick ? std::vector<int>{1, 8, 32} : std::vector<int>{1, 2, 4, 8, 16, 32};
+  for (float zoom : zooms) {
+    const scene s = zoomed(hair, zoom);
+    render::options o = base;
+    o.kbuffer_variant = L::forward;
+    auto reference = draw(s, o);
+    if (!reference) return failure{reference.error()};
+    std::vector<bool> mask(reference->kbuffer_heads.size());
+    for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = reference->kbuffer_heads[i] != 0xffffffffu;
+    const render::layer_counts counts = render::count_layers(*reference);
+    auto record = [&](L variant, int k, const render::frame& f) {
+      const error e = compare(f.final_image, reference->final_image, mask);
+      const bool lists = variant != L::wboit;
+      // As nvpro's OIT table counts them: the lists' heads and nodes, and the two tail targets.
+      const int bytes = (lists ? 4 + kbuffer_nodes_per_pixel * kbuffer_node_bytes : 0) + 8 + 2;
+      const double ms = f.pass_ms.at("capture") + f.pass_ms.at("resolve");
+      records.push_back({{"technique", std::string("layers-") + layers_name(variant)},
+                         {"scene", "hair"},
+                         {"backend", backend},
+                         {"settings", {{"k", variant == L::deferred || variant == L::tailless ? json(k) : json(nullptr)},
+                                       {"zoom", zoom}, {"hair_pixels", counts.pixels}, {"mean_layers", counts.mean},
+                                       {"width", base.width}, {"height", base.height}, {"frames", f.frames},
+                                       {"overflow", f.kbuffer_overflow}}},
+                         {"frame_ms", f.frame_ms},
+                         {"frame_ms_spread", f.frame_ms_spread},
+                         {"pass_ms", f.pass_ms},
+                         {"layers_ms", ms},
+                         {"bytes_per_pixel", bytes},
+                         {"render_targets", nullptr},
+                         {"reference", "forward reference (every fragment sorted and shaded fully)"},
+                         {"rmse", e.rmse},
+                         {"rmse_transparent", e.rmse_transparent},
+                         {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)},
+                         {"leak_pixels", nullptr}});
+    };
+    record(L::forward, 64, *reference);
+    for (L variant : {L::deferred, L::tailless})
+      for (int k : ks) {
+        o.kbuffer_variant = variant;
+        o.kbuffer_k = k;
+        auto f = draw(s, o);
+        if (!f) return failure{f.error()};
+        record(variant, k, *f);
+      }
+    for (L variant : {L::cheap, L::wboit}) {
+      o.kbuffer_variant = variant;
+      auto f = draw(s, o);
+      if (!f) return failure{f.error()};
+      record(variant, 0, *f);
+    }
+    std::fprintf(stderr, "hair at zoom %.2f: %zu hair pixels, %.1f layers on average\n", double(zoom), counts.pixels, counts.mean);
+  }
+  return records;
+}
+
 }  // namespace
 
 int bench(std::vector<std::string> args) {
@@ -281,6 +361,34 @@ int bench(std::vector<std::string> args) {
                    f->frame_ms, e.rmse, tty ? "" : "\n");
     }
     if (tty) std::fputc('\n', stderr);
+    // S1: many layers on hair.json, on this backend and on the other where the machine has it.
+    auto hair = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/hair.json");
+    if (!hair) {
+      std::fprintf(stderr, "dstrans bench: %s\n", hair.error().c_str());
+      return 1;
+    }
+    for (const std::string& b : {backend, std::string(backend == "gl" ? "vk" : "gl")}) {
+      auto other = b == backend ? result<std::unique_ptr<gpu>>(failure{"unused"}) : open_gpu(b);
+      if (b != backend && !other) {
+        std::fprintf(stderr, "dstrans bench: hair on %s skipped: %s\n", b.c_str(), other.error().c_str());
+        continue;
+      }
+      const gpu& on = b == backend ? **g : **other;
+      auto layers = layers_records(*hair, base, quick, b, [&](const scene& s, const render::options& o) -> result<render::frame> {
+#ifdef DSTRANS_HAVE_GL
+        if (on.gl) return render::render_gl(s, o, DSTRANS_SHADER_DIR);
+#endif
+#ifdef DSTRANS_HAVE_VK
+        if (on.vk) return render::render_vk(*on.vk, s, o, DSTRANS_SHADER_DIR);
+#endif
+        return failure{"no backend"};
+      });
+      if (!layers) {
+        std::fprintf(stderr, "dstrans bench: hair on %s: %s\n", b.c_str(), layers.error().c_str());
+        return 1;
+      }
+      for (const json& r : *layers) results.push_back(r);
+    }
     std::ofstream(out + "/results.json") << results.dump(1) << "\n";
     // report.md and the plot come from results.json alone (bench/report.py, matplotlib); Debian's python3
     // has matplotlib, so it is preferred over another python3 earlier on the PATH.

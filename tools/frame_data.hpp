@@ -37,10 +37,12 @@ struct options {
   // and a NaN or infinity stays visible instead of being stored as 0 (for checking a frame's numbers).
   bool float_targets = false;
   // The k-buffer (many_layers, TECHNIQUES.md S1): how many nearest fragments a pixel shades fully (1 to
-  // 32), and how the rest are shaded.
+  // 32), and how the rest are shaded: the forward reference (all in order, all shaded fully), deferred
+  // (the tail cheaply), tailless (the tail's opacity only), cheap (everything cheaply), or weighted
+  // blended OIT instead of lists (the peer).
   int kbuffer_k = 8;
   std::uint32_t kbuffer_nodes = 0;  // the node pool's size; 0: kbuffer_nodes_per_pixel a pixel
-  enum class layers { forward, deferred, tailless, cheap } kbuffer_variant = layers::deferred;
+  enum class layers { forward, deferred, tailless, cheap, wboit } kbuffer_variant = layers::deferred;
   // Effects planned even where the scene or the other options leave them nothing to do (the full
   // pipeline, for comparisons): refraction of strength 0, say, runs its code and moves no sample.
   effects force;

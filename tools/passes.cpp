@@ -155,7 +155,7 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
     }
   if (auto ok = add("compose pass", compose_pass(dir, plan.on, o)); !ok) return failure{ok.error()};
   if (plan.on.has(effect::many_layers)) {
-    if (auto ok = add("capture pass", capture_pass(dir, plan.shadows)); !ok) return failure{ok.error()};
+    if (auto ok = add("capture pass", capture_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
     if (auto ok = add("resolve pass", resolve_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
   }
   return out;
@@ -183,10 +183,11 @@ std::vector<target_desc> kbuffer_tail_targets() {
   return {{format::rgba16f, {"tail.r", "tail.g", "tail.b", "tail.alpha"}}, {format::r16f, {"optical_depth"}}};
 }
 
-result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows) {
+result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows, const options& o) {
   pass_sources p;
   std::vector<std::string> switches;
   add_layers_inputs(p.fragment, shadows, switches);
+  if (o.kbuffer_variant == options::layers::wboit) switches.push_back("DST_LAYERS_WBOIT");
   if (auto ok = finish(p.fragment, dir, {"kbuffer.glsl", "capture.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return scene_vertex(dir, std::move(p));
 }

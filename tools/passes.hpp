@@ -46,7 +46,7 @@ result<pass_sources> compose_pass(const std::string& dir, effects on, const opti
 
 // The k-buffer (many_layers): hair into per-pixel lists (or the tail targets), then the resolve over the
 // frame with the options' k and variant. `shadows` is the shadow map's kind.
-result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows);
+result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows, const options& o);
 result<pass_sources> resolve_pass(const std::string& dir, shadow_mode shadows, const options& o);
 // Its node pool's size and tail targets.
 std::uint32_t kbuffer_capacity(const options& o);

@@ -24,7 +24,8 @@ const char* const usage =
     "       [--frames N]   render N frames with the same resources; pass times are their medians\n"
     "       [--transmittance thesis|physical]   light through glass: min(I_L, C) (Eq. 3.2) or I_L C\n"
     "       [--float-targets]   light buffers and the final image in RGBA32F: no saturation, NaN kept\n"
-    "       [--k N] [--layers forward|deferred|tailless|cheap]   hair (S1): fragments shaded fully, and how\n"
+    "       [--k N] [--layers forward|deferred|tailless|cheap|wboit]   hair (S1): fragments shaded fully, and\n"
+    "                           the rest (wboit: weighted blended OIT instead of lists)\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
@@ -50,7 +51,9 @@ int render(std::vector<std::string> args) {
     if (layers == "forward") o.kbuffer_variant = render::options::layers::forward;
     else if (layers == "tailless") o.kbuffer_variant = render::options::layers::tailless;
     else if (layers == "cheap") o.kbuffer_variant = render::options::layers::cheap;
-    else if (layers != "deferred") throw usage_error{"--layers must be forward, deferred, tailless or cheap, not '" + layers + "'"};
+    else if (layers == "wboit") o.kbuffer_variant = render::options::layers::wboit;
+    else if (layers != "deferred")
+      throw usage_error{"--layers must be forward, deferred, tailless, cheap or wboit, not '" + layers + "'"};
     const std::string bias = take_option(args, "--shadow-bias", "0.0005");
     try {
       std::size_t used = 0;

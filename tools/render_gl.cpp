@@ -111,7 +111,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   const bool many = plan.on.has(effect::many_layers) && !forward;
   GLuint capture_prog = 0, resolve_prog = 0;
   if (many) {
-    auto c = r.program(capture_pass(shader_dir, mode), "capture pass");
+    auto c = r.program(capture_pass(shader_dir, mode, o), "capture pass");
     if (!c) return failure{c.error()};
     capture_prog = *c;
     auto rs = r.program(resolve_pass(shader_dir, mode, o), "resolve pass");

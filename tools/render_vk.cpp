@@ -293,7 +293,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!nb) return failure{nb.error()};
     nodes = *nb;
     r.buffers.push_back(nodes);
-    capture_shaders = compile(dev, capture_pass(shader_dir, mode), "capture pass");
+    capture_shaders = compile(dev, capture_pass(shader_dir, mode, o), "capture pass");
     if (!capture_shaders) return failure{capture_shaders.error()};
     vk::pipeline_state st = scene_state;
     st.additive = true;

@@ -1,6 +1,7 @@
 // The capture pass (S1): every hair fragment in front of the opaque frame goes into its pixel's list; when
 // the pool is full it is shaded cheaply and added to the tail targets instead (never dropped). Fragments
-// with alpha below 1/255 are dropped.
+// with alpha below 1/255 are dropped. With DST_LAYERS_WBOIT (weighted blended OIT, McGuire and Bavoil
+// 2013, the peer) there are no lists: every fragment is shaded fully and added to the tail with its weight.
 layout(location = 0) in vec3 world_normal;  // the strand's tangent, for hair
 layout(location = 1) flat in uint surface_material;
 layout(location = 0) out vec4 tail;           // premultiplied colour and alpha, added
@@ -13,6 +14,12 @@ void main() {
   if (alpha < 1.0f / 255.0f || gl_FragCoord.z >= dst_gbuffer_read(p).depth) discard;
   vec3 tangent = normalize(world_normal);
   vec4 colour_alpha = vec4(m.diffuse_alpha.xyz, alpha);
+  optical_depth = -log(max(1.0f - alpha, 1.0f / 1024.0f));
+#ifdef DST_LAYERS_WBOIT
+  vec3 lit = dst_hair_lit(dst_world_at(p, gl_FragCoord.z), tangent, colour_alpha, true);
+  tail = dst_tail_add(vec4(0.0f), vec4(lit, alpha)) * dst_wboit_weight(alpha, gl_FragCoord.z);
+  return;
+#endif
   uint node = atomicAdd(kbuffer.count, 1u);
   if (node < kbuffer.capacity) {
     uint next = imageAtomicExchange(dst_heads, p, node);
@@ -24,5 +31,4 @@ void main() {
   atomicAdd(kbuffer.overflow, 1u);
   vec3 shaded = dst_hair_lit(dst_world_at(p, gl_FragCoord.z), tangent, colour_alpha, false);
   tail = dst_tail_add(vec4(0.0f), vec4(shaded, alpha));
-  optical_depth = -log(max(1.0f - alpha, 1.0f / 1024.0f));
 }
