@@ -25,6 +25,7 @@
 #include "glsl.hpp"
 #include "interlace.hpp"
 #include "kbuffer.hpp"
+#include "light_basis.hpp"
 #include "phong.hpp"
 #include "refraction.hpp"
 #include "surface.hpp"
@@ -366,6 +367,15 @@ inline const std::vector<formula>& formulas() {
           .within({"o", "t", "ambient"}, {0.0f, 1.0f})
           .within({"light_o", "light_t"}, {0.0f, 4.0f})
           .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_light_basis, dst_facing).within({"v", "axis"}, unit_vector()).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_light_basis, dst_six_axis).yields(-1.0f, 1.0f),
+      DSTRANS_FORMULA(dst_light_basis, dst_four_axis).yields(-1.0f, 1.0f),
+      DSTRANS_FORMULA(dst_light_basis, dst_six_axis_norm).within("l", unit_vector()).yields(1.0f - 1e-6f, 1.7320509f),
+      DSTRANS_FORMULA(dst_light_basis, dst_four_axis_norm).within("l", unit_vector()).yields(0.8164965f, 1.1547006f),
+      DSTRANS_FORMULA(dst_light_basis, dst_basis_weight)
+          .within({"l", "axis"}, unit_vector())
+          .within("norm", {1.0f, 2.0f})
+          .yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_octahedral, dst_octahedral_encode).within("n", unit_vector()).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_octahedral, dst_octahedral_decode).within("e", {-1.0f, 1.0f}).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_fragment_node, dst_pack_tangent).within("tangent", unit_vector()).packs(16),

@@ -1,0 +1,80 @@
+// S2's light bases with the normalisation S2 left open (issue 10): a light along an axis is Lambert
+// exactly; for every light direction, the light a surface receives averaged over its normal equals
+// Lambert's average; without the normalisation it does not; projections add.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include <dstrans/light_basis.hpp>
+
+using namespace dstrans;
+
+namespace {
+
+glm::vec3 random_unit(std::mt19937& rng) {
+  std::normal_distribution<float> g;
+  return glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
+}
+
+// What a surface of normal n reads when one white light from l is stored in basis b.
+float through(const basis& b, glm::vec3 n, glm::vec3 l) {
+  std::vector<glm::vec3> values;
+  for (float w : b.project(l)) values.push_back(glm::vec3(w));
+  return b.evaluate(n, values).x;
+}
+
+}  // namespace
+
+TEST_CASE("a light along an axis of the six- or four-axis set is Lambert exactly", "[light_basis]") {
+  std::mt19937 rng(10);
+  for (const basis& b : {six_axes(), four_axes()})
+    for (const glm::vec3& a : b.axes) {
+      CHECK(b.norm(a) == Approx(1.0f));
+      for (int i = 0; i < 1000; ++i) {
+        const glm::vec3 n = random_unit(rng);
+        CHECK(through(b, n, a) == Approx(std::max(0.0f, glm::dot(n, a))).margin(1e-6));
+      }
+    }
+}
+
+TEST_CASE("for every light direction the average over normals is Lambert's 1/4, for any set of axes", "[light_basis]") {
+  std::mt19937 rng(11);
+  basis user;  // a set of seven axes of no particular symmetry that spans every direction
+  for (glm::vec3 a : {glm::vec3(1, 0.2f, 0), glm::vec3(-0.3f, 1, 0.1f), glm::vec3(0, -0.5f, 1), glm::vec3(-1, -1, -1),
+                      glm::vec3(0.4f, -1, 0.3f), glm::vec3(-1, 0.5f, 0.8f), glm::vec3(0.7f, 0.6f, -1)})
+    user.axes.push_back(glm::normalize(a));
+  const int normals = 200000;
+  std::vector<glm::vec3> ns;
+  for (int i = 0; i < normals; ++i) ns.push_back(random_unit(rng));
+  for (const basis& b : {six_axes(), four_axes(), user})
+    for (glm::vec3 l : {glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, 1, 1)), glm::normalize(glm::vec3(0.3f, -0.8f, 0.5f))}) {
+      double lambert = 0.0, stored = 0.0, unnormalised = 0.0;
+      for (const glm::vec3& n : ns) {
+        lambert += std::max(0.0f, glm::dot(n, l));
+        stored += through(b, n, l);
+        unnormalised += through(b, n, l) * b.norm(l);
+      }
+      INFO(b.axes.size() << " axes, light " << l.x << " " << l.y << " " << l.z);
+      CHECK(lambert / normals == Approx(0.25).epsilon(0.01));
+      CHECK(stored / normals == Approx(lambert / normals).epsilon(0.01));
+      if (b.axes.size() == 6 && l.y > 0.5f) CHECK(unnormalised / normals == Approx(std::sqrt(3.0) / 4.0).epsilon(0.01));
+    }
+}
+
+TEST_CASE("projections add: two lights stored together read as the sum of each", "[light_basis]") {
+  const basis b = six_axes();
+  const glm::vec3 l1 = glm::normalize(glm::vec3(1, 2, -0.5f)), l2 = glm::normalize(glm::vec3(-1, 0.3f, 0.2f));
+  const glm::vec3 c1(1.0f, 0.5f, 0.2f), c2(0.1f, 0.2f, 0.9f);
+  std::vector<glm::vec3> both(6, glm::vec3(0.0f)), one(6, glm::vec3(0.0f)), two(6, glm::vec3(0.0f));
+  const auto w1 = b.project(l1), w2 = b.project(l2);
+  for (int i = 0; i < 6; ++i) {
+    both[std::size_t(i)] = c1 * w1[std::size_t(i)] + c2 * w2[std::size_t(i)];
+    one[std::size_t(i)] = c1 * w1[std::size_t(i)];
+    two[std::size_t(i)] = c2 * w2[std::size_t(i)];
+  }
+  const glm::vec3 n = glm::normalize(glm::vec3(0.2f, 0.9f, -0.3f));
+  CHECK(glm::length(b.evaluate(n, both) - b.evaluate(n, one) - b.evaluate(n, two)) < 1e-6f);
+  basis half;  // axes on one side only: a light from the other side is lost, not divided by zero
+  half.axes = {glm::vec3(1, 0, 0)};
+  CHECK(half.project(glm::vec3(-1, 0, 0))[0] == 0.0f);
+}
