@@ -6,6 +6,7 @@
 #include <random>
 
 #include <dstrans/light_basis.hpp>
+#include <dstrans/light_volume.hpp>
 
 using namespace dstrans;
 
@@ -77,4 +78,28 @@ TEST_CASE("projections add: two lights stored together read as the sum of each",
   basis half;  // axes on one side only: a light from the other side is lost, not divided by zero
   half.axes = {glm::vec3(1, 0, 0)};
   CHECK(half.project(glm::vec3(-1, 0, 0))[0] == 0.0f);
+}
+
+TEST_CASE("a baked volume is linear in its lights and samples its cells at their centres", "[light_volume]") {
+  const volume_grid g = fit_grid({0.0f, 0.0f, 0.0f}, {2.0f, 1.0f, 3.0f}, {4, 2, 6});
+  CHECK(glm::vec3(g.scale) == glm::vec3(0.5f));
+  volume_light sun, lamp;
+  sun.direction_range = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);  // straight down: along -Y, an axis of both sets
+  lamp.position_kind = glm::vec4(1.0f, 2.0f, 1.0f, 1.0f);
+  lamp.direction_range.w = 5.0f;
+  for (const basis& b : {six_axes(), four_axes()}) {
+    const auto both = bake_light_volume(g, b, {sun, lamp}), one = bake_light_volume(g, b, {sun}), two = bake_light_volume(g, b, {lamp});
+    for (std::size_t i = 0; i < both.size(); ++i) CHECK(glm::length(both[i] - one[i] - two[i]) < 1e-5f);
+  }
+  // The sun comes from +Y: all of it on the +Y axis of the six-axis set, in every cell.
+  const auto cells = bake_light_volume(g, six_axes(), {sun});
+  for (std::size_t c = 0; c < g.cells(); ++c)
+    for (std::size_t a = 0; a < 6; ++a) CHECK(cells[c * 6 + a].x == (a == 2 ? 1.0f : 0.0f));
+  // A point light at a cell's centre has no direction there; the cell next to it is lit from that side.
+  volume_light at_centre;
+  at_centre.position_kind = glm::vec4(0.25f, 0.25f, 0.25f, 1.0f);  // the centre of cell (0, 0, 0)
+  at_centre.direction_range.w = 5.0f;
+  const auto near = bake_light_volume(g, six_axes(), {at_centre});
+  for (std::size_t a = 0; a < 6; ++a) CHECK(near[a] == glm::vec4(0.0f));
+  CHECK(near[6 * 1 + 1].x > 0.0f);  // cell (1, 0, 0): the light is towards -X
 }

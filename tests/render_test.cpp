@@ -4,10 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <optional>
 
 #include <dstrans/dstrans.hpp>
+#include <dstrans/light_volume.hpp>
 #include <render_gl.hpp>
 #include <render_vk.hpp>
 #include <frame_data.hpp>
@@ -18,6 +20,7 @@
 #include "effect_scenes.hpp"
 #include <scene_json.hpp>
 
+#include <dstrans_gl.hpp>
 #include <dstrans_gl_context.hpp>
 #include <dstrans_vk_device.hpp>
 
@@ -740,4 +743,145 @@ TEST_CASE("hair on GL and Vulkan: the same fragments, the same mean colour", "[r
     mv += v->final_image.rgba[i];
   }
   CHECK(std::abs(mg - mv) / double(g->final_image.rgba.size()) < 0.5);
+}
+
+// Issue 10: the light-volume bake on the GPU gives the CPU's cells, for a grid whose sizes are not
+// multiples of the work group's 4, baked in two dispatches that add up (as unshadowed lights and a
+// shadowed spot light would be).
+std::vector<volume_light> bake_lights() {
+  volume_light sun, lamp, spot;
+  sun.direction_range = glm::vec4(glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f)), 0.0f);
+  sun.colour_cos_outer = glm::vec4(0.5f, 0.5f, 0.6f, 0.0f);
+  lamp.position_kind = glm::vec4(0.5f, 1.5f, 0.2f, 1.0f);
+  lamp.direction_range.w = 4.0f;
+  lamp.colour_cos_outer = glm::vec4(1.0f, 0.7f, 0.3f, 0.0f);
+  spot.position_kind = glm::vec4(-1.0f, 2.0f, 1.0f, 2.0f);
+  spot.direction_range = glm::vec4(glm::normalize(glm::vec3(0.5f, -1.0f, -0.5f)), 6.0f);
+  spot.colour_cos_outer = glm::vec4(1.0f, 1.0f, 1.0f, std::cos(glm::radians(35.0f)));
+  spot.cos_inner.x = std::cos(glm::radians(20.0f));
+  return {sun, lamp, spot};
+}
+
+std::vector<glm::vec4> bake_gl(const volume_grid& g, const basis& b, const std::vector<std::vector<volume_light>>& dispatches) {
+  glsl::source cs;
+  glsl::add_light_volume_bake(cs, b);
+  auto prog = gl::make_compute_program(cs, "light volume bake");
+  INFO(prog.error());
+  REQUIRE(prog);
+  GLuint buffers[3];
+  glCreateBuffers(3, buffers);
+  std::vector<glm::vec4> zero(g.cells() * b.axes.size(), glm::vec4(0.0f));
+  glNamedBufferStorage(buffers[1], GLsizeiptr(zero.size() * sizeof(glm::vec4)), zero.data(), GL_DYNAMIC_STORAGE_BIT);
+  glNamedBufferStorage(buffers[2], sizeof g, &g, 0);
+  glUseProgram(*prog);
+  for (const auto& lights : dispatches) {
+    GLuint l;
+    glCreateBuffers(1, &l);
+    glNamedBufferStorage(l, GLsizeiptr(lights.size() * sizeof(volume_light)), lights.data(), 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, l);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 2, buffers[2]);
+    glDispatchCompute(GLuint(g.dims.x + 3) / 4, GLuint(g.dims.y + 3) / 4, GLuint(g.dims.z + 3) / 4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glDeleteBuffers(1, &l);
+  }
+  std::vector<glm::vec4> out(zero.size());
+  glGetNamedBufferSubData(buffers[1], 0, GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
+  glDeleteBuffers(3, buffers);
+  glDeleteProgram(*prog);
+  return out;
+}
+
+std::vector<glm::vec4> bake_vk(vk::device& dev, const volume_grid& g, const basis& b,
+                               const std::vector<std::vector<volume_light>>& dispatches) {
+  glsl::source cs;
+  glsl::add_light_volume_bake(cs, b);
+  auto sh = dev.get_shader(cs, spirv::stage::compute, "light volume bake");
+  INFO(sh.error());
+  REQUIRE(sh);
+  auto p = dev.make_compute_pipeline(**sh, "light volume bake");
+  REQUIRE(p);
+  const VkDevice device = dev.ctx().device;
+  auto cells = dev.make_buffer(g.cells() * b.axes.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "cells");
+  auto grid = dev.make_buffer(sizeof g, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "grid");
+  REQUIRE(cells);
+  REQUIRE(grid);
+  std::memset(cells->mapped, 0, std::size_t(cells->size));
+  std::memcpy(grid->mapped, &g, sizeof g);
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}, {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2}};
+  VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pci.maxSets = 2;
+  pci.poolSizeCount = 2;
+  pci.pPoolSizes = sizes;
+  VkDescriptorPool pool;
+  REQUIRE(vkCreateDescriptorPool(device, &pci, nullptr, &pool) == VK_SUCCESS);
+  std::vector<vk::buffer> light_buffers;
+  for (const auto& lights : dispatches) {
+    auto l = dev.make_buffer(lights.size() * sizeof(volume_light), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "volume lights");
+    REQUIRE(l);
+    std::memcpy(l->mapped, lights.data(), lights.size() * sizeof(volume_light));
+    light_buffers.push_back(*l);
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = pool;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &p->set_layout;
+    VkDescriptorSet set;
+    REQUIRE(vkAllocateDescriptorSets(device, &ai, &set) == VK_SUCCESS);
+    const VkDescriptorBufferInfo infos[] = {{l->handle, 0, VK_WHOLE_SIZE}, {cells->handle, 0, VK_WHOLE_SIZE}, {grid->handle, 0, VK_WHOLE_SIZE}};
+    VkWriteDescriptorSet writes[3]{};
+    for (std::uint32_t i = 0; i < 3; ++i) {
+      writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+      writes[i].dstSet = set;
+      writes[i].dstBinding = i;
+      writes[i].descriptorCount = 1;
+      writes[i].descriptorType = i == 2 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      writes[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(device, 3, writes, 0, nullptr);
+    dev.submit([&](VkCommandBuffer cmd) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->handle);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 1, &set, 0, nullptr);
+      vkCmdDispatch(cmd, std::uint32_t(g.dims.x + 3) / 4, std::uint32_t(g.dims.y + 3) / 4, std::uint32_t(g.dims.z + 3) / 4);
+    });
+  }
+  const auto* data = static_cast<const glm::vec4*>(cells->mapped);
+  std::vector<glm::vec4> out(data, data + g.cells() * b.axes.size());
+  vkDestroyDescriptorPool(device, pool, nullptr);
+  for (vk::buffer& l : light_buffers) dev.destroy(l);
+  dev.destroy(*cells);
+  dev.destroy(*grid);
+  dev.destroy(*p);
+  return out;
+}
+
+TEST_CASE("the light-volume bake gives the CPU's cells on GL and Vulkan, dispatches adding up", "[light_volume][gl][vk]") {
+  const volume_grid g = fit_grid({-1.0f, 0.0f, -1.0f}, {1.5f, 2.5f, 0.8f}, {5, 7, 3});  // not multiples of 4
+  const std::vector<volume_light> all = bake_lights();
+  const std::vector<std::vector<volume_light>> split{{all[0], all[1]}, {all[2]}};
+  for (const basis& b : {six_axes(), four_axes()}) {
+    const std::vector<glm::vec4> cpu = bake_light_volume(g, b, all);
+    auto compare = [&](const char* name, const std::vector<glm::vec4>& gpu) {
+      INFO(name << ", " << b.axes.size() << " axes");
+      REQUIRE(gpu.size() == cpu.size());
+      float worst = 0.0f;
+      for (std::size_t i = 0; i < cpu.size(); ++i)
+        worst = std::max(worst, glm::length(glm::vec3(gpu[i]) - glm::vec3(cpu[i])) / std::max(1.0f, glm::length(glm::vec3(cpu[i]))));
+      CHECK(worst < 1e-5f);
+    };
+    bool any_light = false;
+    for (const glm::vec4& c : cpu) any_light = any_light || c.x > 0.0f;
+    CHECK(any_light);
+    if (auto ctx = gl::headless_context::create()) {
+      compare("GL", bake_gl(g, b, split));
+      CHECK((*ctx)->debug_messages().empty());
+    }
+    if (auto hd = vk::headless_device::create(true)) {
+      {
+        auto dev = vk::device::create((*hd)->ctx());
+        REQUIRE(dev);
+        compare("VK", bake_vk(**dev, g, b, split));
+      }
+      CHECK((*hd)->validation_messages().empty());
+    }
+  }
 }
