@@ -103,3 +103,36 @@ TEST_CASE("a baked volume is linear in its lights and samples its cells at their
   for (std::size_t a = 0; a < 6; ++a) CHECK(near[a] == glm::vec4(0.0f));
   CHECK(near[6 * 1 + 1].x > 0.0f);  // cell (1, 0, 0): the light is towards -X
 }
+
+TEST_CASE("packed regions of unequal sizes read back each cell where a particle reads it", "[light_volume]") {
+  const std::vector<volume_grid> grids{fit_grid({0, 0, 0}, {1, 2, 1}, {5, 9, 4}), fit_grid({-3, 1, 2}, {-1, 2, 5}, {8, 3, 11}),
+                                       fit_grid({2, -1, -1}, {2.5f, 0, 0}, {2, 6, 1})};
+  const volume_atlas atlas = pack_volumes(grids);
+  CHECK(atlas.size == glm::ivec3(15, 9, 11));
+  // Each cell's texel holds a code naming its region and cell; read it back at the cell's centre.
+  std::vector<int> texels(std::size_t(atlas.size.x * atlas.size.y * atlas.size.z), -1);
+  for (std::size_t r = 0; r < grids.size(); ++r)
+    for (int z = 0; z < grids[r].dims.z; ++z)
+      for (int y = 0; y < grids[r].dims.y; ++y)
+        for (int x = 0; x < grids[r].dims.x; ++x) texels[atlas_texel(atlas, r, {x, y, z})] = int(r * 10000 + (z * 100 + y) * 10 + x);
+  std::size_t wrong = 0;
+  for (std::size_t r = 0; r < grids.size(); ++r) {
+    const volume_grid& g = grids[r];
+    for (int z = 0; z < g.dims.z; ++z)
+      for (int y = 0; y < g.dims.y; ++y)
+        for (int x = 0; x < g.dims.x; ++x) {
+          const glm::vec3 centre = glm::vec3(g.origin) + (glm::vec3(x, y, z) + 0.5f) * glm::vec3(g.scale);
+          const glm::vec3 uvw = shader::dst_volume_texcoord(centre, glm::vec3(g.origin), glm::vec3(g.scale), glm::vec3(atlas.offsets[r]),
+                                                            glm::vec3(g.dims), glm::vec3(atlas.size));
+          const glm::ivec3 t = glm::ivec3(glm::floor(uvw * glm::vec3(atlas.size)));
+          const int got = texels[std::size_t((t.z * atlas.size.y + t.y) * atlas.size.x + t.x)];
+          wrong += got != int(r * 10000 + (z * 100 + y) * 10 + x);
+          // Far outside its region a particle still reads its own region's border, never a neighbour.
+          const glm::vec3 far = shader::dst_volume_texcoord(centre + glm::vec3(100.0f), glm::vec3(g.origin), glm::vec3(g.scale),
+                                                            glm::vec3(atlas.offsets[r]), glm::vec3(g.dims), glm::vec3(atlas.size));
+          const float texel_x = far.x * float(atlas.size.x);
+          wrong += texel_x < float(atlas.offsets[r].x) + 0.5f - 1e-4f || texel_x > float(atlas.offsets[r].x + g.dims.x) - 0.5f + 1e-4f;
+        }
+  }
+  CHECK(wrong == 0u);
+}

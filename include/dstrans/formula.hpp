@@ -26,6 +26,7 @@
 #include "interlace.hpp"
 #include "kbuffer.hpp"
 #include "light_basis.hpp"
+#include "light_volume.hpp"
 #include "phong.hpp"
 #include "refraction.hpp"
 #include "surface.hpp"
@@ -376,6 +377,18 @@ inline const std::vector<formula>& formulas() {
           .within({"l", "axis"}, unit_vector())
           .within("norm", {1.0f, 2.0f})
           .yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_volume_texcoord, dst_volume_axis)
+          .within({"p", "origin"}, {-4.0f, 4.0f})
+          .within({"scale"}, {0.05f, 1.0f})
+          .within({"offset"}, {0.0f, 64.0f})
+          .within({"dims"}, {1.0f, 32.0f})
+          .within({"atlas"}, {64.0f, 128.0f}),
+      DSTRANS_FORMULA(dst_volume_texcoord, dst_volume_texcoord)
+          .within({"p", "origin"}, {-4.0f, 4.0f})
+          .within({"scale"}, {0.05f, 1.0f})
+          .within({"offset"}, {0.0f, 64.0f})
+          .within({"dims"}, {1.0f, 32.0f})
+          .within({"atlas_size"}, {64.0f, 128.0f}),
       DSTRANS_FORMULA(dst_octahedral, dst_octahedral_encode).within("n", unit_vector()).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_octahedral, dst_octahedral_decode).within("e", {-1.0f, 1.0f}).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_fragment_node, dst_pack_tangent).within("tangent", unit_vector()).packs(16),

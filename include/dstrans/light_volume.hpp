@@ -7,6 +7,8 @@
 //   dstrans::glsl::add_light_volume_bake(cs, dstrans::six_axes());   // one invocation per cell, 4x4x4 groups
 //   // dispatch ceil(dims / 4) groups with the lights at binding 0, the cells at 1, the grid at 2
 //   std::vector<glm::vec4> cells = dstrans::bake_light_volume(g, dstrans::six_axes(), lights);   // the CPU's
+//   dstrans::volume_atlas atlas = dstrans::pack_volumes({g, other});   // regions side by side along X
+//   glm::vec3 uvw = dstrans::shader::dst_volume_texcoord(p, origin, scale, offset, dims, atlas_size);
 //
 // Choices: a cell is sampled at its centre, origin + (id + 0.5) * scale, with a scale per axis fitted to
 // the bounds (the group count is rounded up; invocations past the grid return). The accumulation storage
@@ -25,6 +27,24 @@
 #include "glsl.hpp"
 #include "light_basis.hpp"
 #include "phong.hpp"
+
+// Where a particle at world position p reads region (origin, scale, dims) of an atlas of atlas_size texels
+// whose region starts at texel offset: a 3D texture coordinate, clamped half a cell inside the region so
+// that trilinear filtering never blends in a neighbouring region.
+DSTRANS_SHARED(dst_volume_texcoord,
+DST_FN float dst_volume_axis(float p, float origin, float scale, float offset, float dims, float atlas) {
+  if (isnan(atlas) || isinf(atlas) || atlas <= 0.0f) return 0.0f;
+  float local = (p - origin) / scale;
+  if (isnan(local) || local < 0.5f) local = 0.5f;
+  if (local > dims - 0.5f) local = dims - 0.5f;
+  return (offset + local) / atlas;
+}
+DST_FN vec3 dst_volume_texcoord(vec3 p, vec3 origin, vec3 scale, vec3 offset, vec3 dims, vec3 atlas_size) {
+  return vec3(dst_volume_axis(p.x, origin.x, scale.x, offset.x, dims.x, atlas_size.x),
+              dst_volume_axis(p.y, origin.y, scale.y, offset.y, dims.y, atlas_size.y),
+              dst_volume_axis(p.z, origin.z, scale.z, offset.z, dims.z, atlas_size.z));
+}
+)
 
 namespace dstrans {
 
@@ -80,6 +100,30 @@ inline std::vector<glm::vec4> bake_light_volume(const volume_grid& g, const basi
         for (std::size_t a = 0; a < values.size(); ++a) cells[cell * b.axes.size() + a] = glm::vec4(values[a], 0.0f);
       }
   return cells;
+}
+
+// Several objects' grids packed side by side along X in one 3D texture (S2): each region's texel offset
+// and the texture's size; texels past a shorter region's height or depth are unused.
+struct volume_atlas {
+  std::vector<volume_grid> regions;
+  std::vector<glm::ivec3> offsets;
+  glm::ivec3 size{0};
+};
+
+inline volume_atlas pack_volumes(const std::vector<volume_grid>& grids) {
+  volume_atlas a;
+  a.regions = grids;
+  for (const volume_grid& g : grids) {
+    a.offsets.push_back({a.size.x, 0, 0});
+    a.size = {a.size.x + g.dims.x, std::max(a.size.y, g.dims.y), std::max(a.size.z, g.dims.z)};
+  }
+  return a;
+}
+
+// The atlas texel (x fastest) that holds cell `cell` of region `r`.
+inline std::size_t atlas_texel(const volume_atlas& a, std::size_t r, glm::ivec3 cell) {
+  const glm::ivec3 t = a.offsets[r] + cell;
+  return (std::size_t(t.z) * std::size_t(a.size.y) + std::size_t(t.y)) * std::size_t(a.size.x) + std::size_t(t.x);
 }
 
 namespace glsl {
