@@ -3,10 +3,21 @@
 // turned to the pane. Without shadows at step 0 the scene calls for nothing.
 #pragma once
 
+#include <set>
+#include <string>
+
 #include <dstrans/scene.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace dstrans::testing {
+
+// What one rung's plan has and the other's has not (switches, targets, effects by name).
+inline std::set<std::string> minus(const std::set<std::string>& a, const std::set<std::string>& b) {
+  std::set<std::string> out;
+  for (const std::string& x : a)
+    if (!b.count(x)) out.insert(x);
+  return out;
+}
 
 enum class rung { nothing, shadows, glass, refractive, seen };
 

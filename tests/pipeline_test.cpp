@@ -13,6 +13,7 @@
 
 using namespace dstrans;
 using testing::effect_scene;
+using testing::minus;
 using testing::rung;
 
 namespace {
@@ -27,12 +28,6 @@ std::set<std::string> switches_of(const pipeline_plan& p) {
   std::set<std::string> out;
   for (const planned_pass& pass : p.passes)
     for (const std::string& s : pass.switches) out.insert(pass.name + ": " + s);
-  return out;
-}
-std::set<std::string> minus(const std::set<std::string>& a, const std::set<std::string>& b) {
-  std::set<std::string> out;
-  for (const std::string& x : a)
-    if (!b.count(x)) out.insert(x);
   return out;
 }
 

@@ -88,10 +88,10 @@ TEST_CASE("refraction offset, depth rejection and the compose blend (Eq. 3.3)", 
   CHECK_FALSE(dst_refraction_rejected(0.4f, 0.6f));
   CHECK_FALSE(dst_refraction_rejected(0.5f, 0.5f));  // equal depths are not a leak
   // The moved sample: opaque behind the glass is taken; in front of it, rejected by depth.
-  CHECK(dst_refraction_accepted_by_depth(1.0f, 0.4f, 0.3f, 0.6f));
-  CHECK(dst_refraction_accepted_by_depth(0.4f, 1.0f, 0.3f, 0.6f));
-  CHECK_FALSE(dst_refraction_accepted_by_depth(1.0f, 0.4f, 0.6f, 0.3f));
-  CHECK_FALSE(dst_refraction_accepted_by_depth(0.4f, 0.4f, 0.3f, 0.6f));  // glass on both rows: no opaque sample
+  CHECK(dst_refraction_source(0.3f, 1.0f, 0.6f, 0.4f, 0.2f) == 1);  // the moved pixel, opaque, behind the glass
+  CHECK(dst_refraction_source(0.3f, 0.4f, 0.2f, 1.0f, 0.6f) == 2);  // its partner when the moved pixel is glass
+  CHECK(dst_refraction_source(0.6f, 1.0f, 0.3f, 0.4f, 0.9f) == 0);  // in front of the glass: a leak, rejected
+  CHECK(dst_refraction_source(0.3f, 0.4f, 0.6f, 0.4f, 0.6f) == 0);  // glass on both rows: no opaque sample
   // Without depth only glass coverage decides (Figure 4.7): beside the glass a valid sample is rejected,
   // and a foreground sample over glass would be taken.
   CHECK(dst_refraction_accepted_by_mask(1.0f, 0.4f));

@@ -45,22 +45,10 @@ struct config {
   effects force{};  // effects the scene does not use, run anyway to measure what leaving them out saves
 };
 
-const char* technique_name(render::technique t) {
-  switch (t) {
-    case render::technique::interlaced: return "interlaced";
-    case render::technique::peeling: return "peeling";
-    case render::technique::forward: return "forward";
-    case render::technique::forward_depth: return "forward-depth";
-  }
-  return "?";
-}
-const char* shadow_name(render::shadow_mode m) {
-  return m == render::shadow_mode::off ? "off" : m == render::shadow_mode::opaque ? "opaque" : "transparent";
-}
 std::string key(const config& c) {
   std::string forced;
   for (const std::string& e : c.force.names()) forced += "+" + e;
-  return std::string(technique_name(c.method)) + "/" + c.scene + "/" + std::to_string(c.lights) + "/" + shadow_name(c.shadows) + forced +
+  return std::string(render::technique_name(c.method)) + "/" + c.scene + "/" + std::to_string(c.lights) + "/" + render::shadow_name(c.shadows) + forced +
          "/" + (c.refraction ? "refraction" : "no refraction");
 }
 
@@ -116,17 +104,6 @@ error compare(const render::image& a, const render::image& ref, const std::vecto
   return {rmse, m ? std::sqrt(masked / double(m)) : 0.0, rmse > 0.0 ? 20.0 * std::log10(255.0 / rmse) : INFINITY};
 }
 
-const char* layers_name(render::options::layers v) {
-  switch (v) {
-    case render::options::layers::forward: return "forward";
-    case render::options::layers::deferred: return "deferred";
-    case render::options::layers::tailless: return "tailless";
-    case render::options::layers::cheap: return "cheap";
-    case render::options::layers::wboit: return "wboit";
-  }
-  return "?";
-}
-
 // The hair scene seen from `zoom` times closer to the camera's target (S1 measured four zoom levels).
 scene zoomed(const scene& s, float zoom) {
   scene out = s;
@@ -157,7 +134,7 @@ result<json> layers_records(const scene& hair, const render::options& base, bool
       // As nvpro's OIT table counts them: the lists' heads and nodes, and the two tail targets.
       const int bytes = (lists ? 4 + kbuffer_nodes_per_pixel * kbuffer_node_bytes : 0) + 8 + 2;
       const double ms = f.pass_ms.at("capture") + f.pass_ms.at("resolve");
-      records.push_back({{"technique", std::string("layers-") + layers_name(variant)},
+      records.push_back({{"technique", std::string("layers-") + render::layers_name(variant)},
                          {"scene", "hair"},
                          {"backend", backend},
                          {"settings", {{"k", variant == L::deferred || variant == L::tailless ? json(k) : json(nullptr)},
@@ -337,10 +314,10 @@ int bench(std::vector<std::string> args) {
       for (const planned_target& t : plan.targets)
         memory += std::int64_t(t.bytes_per_pixel) *
                   (t.shadow_map ? std::int64_t(base.shadow_size) * base.shadow_size : std::int64_t(base.width) * base.height);
-      json rec{{"technique", technique_name(c.method)},
+      json rec{{"technique", render::technique_name(c.method)},
                {"scene", c.scene},
                {"backend", backend},
-               {"settings", {{"lights", c.lights}, {"shadows", shadow_name(c.shadows)}, {"refraction", c.refraction},
+               {"settings", {{"lights", c.lights}, {"shadows", render::shadow_name(c.shadows)}, {"refraction", c.refraction},
                              {"width", base.width}, {"height", base.height}, {"shadow_size", base.shadow_size},
                              {"frames", f->frames},
                              {"forced", c.force.names()}}},

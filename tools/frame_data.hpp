@@ -66,6 +66,30 @@ struct frame_plan {
 frame_plan plan_of(const scene& s, const options& o);
 // The light whose shadow map the hair reads (Eq. 1): the last one drawn, as the maps share targets; -1: none.
 int hair_shadow_light(const frame_plan& p);
+// The names the command line, the benchmark and the viewer give techniques, shadows and k-buffer variants.
+inline const char* technique_name(technique t) {
+  switch (t) {
+    case technique::interlaced: return "interlaced";
+    case technique::peeling: return "peeling";
+    case technique::forward: return "forward";
+    case technique::forward_depth: return "forward-depth";
+  }
+  return "?";
+}
+inline const char* shadow_name(shadow_mode m) {
+  return m == shadow_mode::off ? "off" : m == shadow_mode::opaque ? "opaque" : "transparent";
+}
+inline const char* layers_name(options::layers v) {
+  switch (v) {
+    case options::layers::forward: return "forward";
+    case options::layers::deferred: return "deferred";
+    case options::layers::tailless: return "tailless";
+    case options::layers::cheap: return "cheap";
+    case options::layers::wboit: return "wboit";
+  }
+  return "?";
+}
+
 constexpr shadow_mode all_lookups[] = {shadow_mode::off, shadow_mode::opaque, shadow_mode::transparent};
 // How programs and pipelines of a lookup are labelled: "", " opaque shadows", " transparent shadows".
 inline const char* lookup_label(shadow_mode m) {

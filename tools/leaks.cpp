@@ -27,8 +27,8 @@ leaks count_leaks(const frame& with_depth, const scene& s, const options& o) {
       const glm::ivec2 moved = shader::dst_refraction_pixel(p, size, view * n, o.refraction);
       const glm::ivec2 moved_partner = interlace::rows::partner(moved, size);
       const float alpha_moved = at(0, moved).w, alpha_partner = at(0, moved_partner).w;
-      const glm::ivec2 behind = alpha_moved < 1.0f ? moved_partner : moved;
-      const bool by_depth = shader::dst_refraction_accepted_by_depth(alpha_moved, alpha_partner, at(2, tp).x, at(2, behind).x);
+      const bool by_depth = shader::dst_refraction_source(at(2, tp).x, alpha_moved, at(2, moved).x, alpha_partner,
+                                                          at(2, moved_partner).x) != 0;
       const bool by_mask = shader::dst_refraction_accepted_by_mask(alpha_moved, alpha_partner);
       out.foreground_accepted += by_mask && !by_depth;
       out.background_rejected += !by_mask && by_depth;

@@ -60,18 +60,6 @@ struct viewer_state {
   double last_x = 0.0, last_y = 0.0;
 };
 
-const char* technique_name(render::technique t) {
-  switch (t) {
-    case render::technique::interlaced: return "interlaced";
-    case render::technique::peeling: return "peeling";
-    case render::technique::forward: return "forward";
-    case render::technique::forward_depth: return "forward-depth";
-  }
-  return "?";
-}
-const char* shadow_name(render::shadow_mode m) {
-  return m == render::shadow_mode::off ? "off" : m == render::shadow_mode::opaque ? "opaque" : "transparent";
-}
 
 void on_key(GLFWwindow* w, int key, int, int action, int) {
   if (action != GLFW_PRESS) return;
@@ -206,8 +194,8 @@ int main(int argc, char** argv) {
     }
     const render::options& o = st.now.o;
     char head[256];
-    std::snprintf(head, sizeof head, "dstrans viewer: %s, shadows %s, refraction %s, %s%s: %.1f ms (", technique_name(o.method),
-                  shadow_name(o.shadows), o.refraction > 0.0f ? "on" : "off",
+    std::snprintf(head, sizeof head, "dstrans viewer: %s, shadows %s, refraction %s, %s%s: %.1f ms (", render::technique_name(o.method),
+                  render::shadow_name(o.shadows), o.refraction > 0.0f ? "on" : "off",
                   o.physical_transmittance ? "physical" : "thesis", o.force == effects{} ? "" : ", full pipeline", total);
     title = head + passes + ")";
     glfwSetWindowTitle(window, title.c_str());

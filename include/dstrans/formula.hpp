@@ -352,7 +352,6 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_refraction, dst_refraction_rejected),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_source)
           .within({"depth_t", "alpha_moved", "depth_moved", "alpha_partner", "depth_partner"}, {0.0f, 1.0f}),
-      DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_depth).within({"alpha_moved", "alpha_partner"}, {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_mask).within({"alpha_moved", "alpha_partner"}, {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_compose, dst_shade)
           .within("s", {0.0f, 1.0f})

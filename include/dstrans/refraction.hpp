@@ -55,9 +55,6 @@ DST_FN int dst_refraction_source(float depth_t, float alpha_moved, float depth_m
   if (alpha_partner >= 1.0f) return dst_refraction_rejected(depth_t, depth_partner) ? 0 : 2;
   return 0;
 }
-DST_FN bool dst_refraction_accepted_by_depth(float alpha_moved, float alpha_partner, float depth_t, float depth_o) {
-  return max(alpha_moved, alpha_partner) >= 1.0f && !dst_refraction_rejected(depth_t, depth_o);
-}
 DST_FN bool dst_refraction_accepted_by_mask(float alpha_moved, float alpha_partner) {
   return max(alpha_moved, alpha_partner) >= 1.0f && min(alpha_moved, alpha_partner) < 1.0f;
 }

@@ -27,14 +27,12 @@ void main() {
   ivec2 moved_partner = dst_interlace_partner(moved, size);
   vec4 r = texelFetch(dst_forward_colour, moved, 0), r2 = texelFetch(dst_forward_colour, moved_partner, 0);
   float alpha_moved = r.w, alpha_partner = r2.w;
-  ivec2 ro = r.w < 1.0f ? moved_partner : moved;
-  if (r.w < 1.0f) r = r2;
 #ifdef DST_FORWARD_DEPTH
-  bool accept = dst_refraction_accepted_by_depth(alpha_moved, alpha_partner, texelFetch(dst_forward_depth, tp, 0).x,
-                                                 texelFetch(dst_forward_depth, ro, 0).x);
+  bool accept = dst_refraction_source(texelFetch(dst_forward_depth, tp, 0).x, alpha_moved, texelFetch(dst_forward_depth, moved, 0).x,
+                                      alpha_partner, texelFetch(dst_forward_depth, moved_partner, 0).x) != 0;
 #else
   bool accept = dst_refraction_accepted_by_mask(alpha_moved, alpha_partner);
 #endif
-  if (accept) o = r;
+  if (accept) o = r.w < 1.0f ? r2 : r;
   colour = vec4(dst_blend(o.xyz, t.xyz, t.w), 1.0f);
 }

@@ -10,9 +10,11 @@
 #include <iterator>
 #include <set>
 
+#include "../effect_scenes.hpp"
 #include "run_tool.hpp"
 
 using json = nlohmann::ordered_json;
+using dstrans::testing::minus;
 
 namespace {
 
@@ -49,13 +51,6 @@ plan_facts plan_of(const std::string& scene) {
     for (const json& s : pass["switches"]) f.switches.insert(pass["name"].get<std::string>() + ": " + s.get<std::string>());
   for (const json& t : p["targets"]) f.targets.insert(t["name"].get<std::string>());
   return f;
-}
-
-std::set<std::string> minus(const std::set<std::string>& a, const std::set<std::string>& b) {
-  std::set<std::string> out;
-  for (const std::string& x : a)
-    if (!b.count(x)) out.insert(x);
-  return out;
 }
 
 }  // namespace
