@@ -1,6 +1,6 @@
 // A ladder of scenes that call for one effect more at each step (issue 7): a room lit by a shadowed spot
 // light and the sun; then a glass pane out of the spot's cone; then the pane refractive; then the spot
-// turned to the pane. Without shadows at step 0 the scene calls for nothing.
+// turned to the pane; then a column of smoke (issue 10). Without shadows at step 0 the scene calls for nothing.
 #pragma once
 
 #include <set>
@@ -19,7 +19,8 @@ inline std::set<std::string> minus(const std::set<std::string>& a, const std::se
   return out;
 }
 
-enum class rung { nothing, shadows, glass, refractive, seen };
+enum class rung { nothing, shadows, glass, refractive, seen, particles };
+constexpr rung all_rungs[] = {rung::nothing, rung::shadows, rung::glass, rung::refractive, rung::seen, rung::particles};
 
 inline scene effect_scene(rung r) {
   scene s;
@@ -45,6 +46,16 @@ inline scene effect_scene(rung r) {
   spot.intensity = 1.5f;
   spot.shadows = r >= rung::shadows;
   s.lights = {sun, spot};
+  if (r >= rung::particles) {
+    s.materials.push_back({glm::vec3(0.9f), 0.4f, 0.0f, 16.0f, false});  // smoke
+    particle_system smoke;
+    smoke.material = 3;
+    smoke.base = {0.2f, 0.0f, 0.3f};
+    smoke.radius = 0.4f;
+    smoke.height = 1.5f;
+    smoke.count = 60;
+    s.particles.push_back(smoke);
+  }
   return s;
 }
 

@@ -88,51 +88,66 @@ TEST_CASE("a baked volume is linear in its lights and samples its cells at their
   lamp.position_kind = glm::vec4(1.0f, 2.0f, 1.0f, 1.0f);
   lamp.direction_range.w = 5.0f;
   for (const basis& b : {six_axes(), four_axes()}) {
-    const auto both = bake_light_volume(g, b, {sun, lamp}), one = bake_light_volume(g, b, {sun}), two = bake_light_volume(g, b, {lamp});
+    const volume_atlas a = pack_volumes({g}, int(b.axes.size()));
+    const auto both = bake_light_volume(a, b, {sun, lamp}), one = bake_light_volume(a, b, {sun}), two = bake_light_volume(a, b, {lamp});
     for (std::size_t i = 0; i < both.size(); ++i) CHECK(glm::length(both[i] - one[i] - two[i]) < 1e-5f);
   }
   // The sun comes from +Y: all of it on the +Y axis of the six-axis set, in every cell.
-  const auto cells = bake_light_volume(g, six_axes(), {sun});
-  for (std::size_t c = 0; c < g.cells(); ++c)
-    for (std::size_t a = 0; a < 6; ++a) CHECK(cells[c * 6 + a].x == (a == 2 ? 1.0f : 0.0f));
+  const volume_atlas six = pack_volumes({g}, 6);
+  const auto cells = bake_light_volume(six, six_axes(), {sun});
+  for (int z = 0; z < g.dims.z; ++z)
+    for (int y = 0; y < g.dims.y; ++y)
+      for (int x = 0; x < g.dims.x; ++x)
+        for (int a = 0; a < 6; ++a) CHECK(cells[atlas_texel(six, 0, {x, y, z}, a)].x == (a == 2 ? 1.0f : 0.0f));
   // A point light at a cell's centre has no direction there; the cell next to it is lit from that side.
   volume_light at_centre;
   at_centre.position_kind = glm::vec4(0.25f, 0.25f, 0.25f, 1.0f);  // the centre of cell (0, 0, 0)
   at_centre.direction_range.w = 5.0f;
-  const auto near = bake_light_volume(g, six_axes(), {at_centre});
-  for (std::size_t a = 0; a < 6; ++a) CHECK(near[a] == glm::vec4(0.0f));
-  CHECK(near[6 * 1 + 1].x > 0.0f);  // cell (1, 0, 0): the light is towards -X
+  const auto near = bake_light_volume(six, six_axes(), {at_centre});
+  for (int a = 0; a < 6; ++a) CHECK(near[atlas_texel(six, 0, {0, 0, 0}, a)] == glm::vec4(0.0f));
+  CHECK(near[atlas_texel(six, 0, {1, 0, 0}, 1)].x > 0.0f);  // cell (1, 0, 0): the light is towards -X
 }
 
-TEST_CASE("packed regions of unequal sizes read back each cell where a particle reads it", "[light_volume]") {
+TEST_CASE("packed regions of unequal sizes read back each cell and axis where a particle reads it", "[light_volume]") {
   const std::vector<volume_grid> grids{fit_grid({0, 0, 0}, {1, 2, 1}, {5, 9, 4}), fit_grid({-3, 1, 2}, {-1, 2, 5}, {8, 3, 11}),
                                        fit_grid({2, -1, -1}, {2.5f, 0, 0}, {2, 6, 1})};
-  const volume_atlas atlas = pack_volumes(grids);
-  CHECK(atlas.size == glm::ivec3(15, 9, 11));
-  // Each cell's texel holds a code naming its region and cell; read it back at the cell's centre.
+  const int axes = 3;
+  const volume_atlas atlas = pack_volumes(grids, axes);
+  CHECK(atlas.size == glm::ivec3(15, 9 * axes, 11));
+  CHECK(atlas.slab == 9);
+  // Each texel holds a code naming its region, cell and axis; read it back at the cell's centre.
+  auto code = [](std::size_t r, int x, int y, int z, int a) { return int(r * 100000 + a * 10000 + (z * 100 + y) * 10 + x); };
   std::vector<int> texels(std::size_t(atlas.size.x * atlas.size.y * atlas.size.z), -1);
   for (std::size_t r = 0; r < grids.size(); ++r)
-    for (int z = 0; z < grids[r].dims.z; ++z)
-      for (int y = 0; y < grids[r].dims.y; ++y)
-        for (int x = 0; x < grids[r].dims.x; ++x) texels[atlas_texel(atlas, r, {x, y, z})] = int(r * 10000 + (z * 100 + y) * 10 + x);
+    for (int a = 0; a < axes; ++a)
+      for (int z = 0; z < grids[r].dims.z; ++z)
+        for (int y = 0; y < grids[r].dims.y; ++y)
+          for (int x = 0; x < grids[r].dims.x; ++x) {
+            int& t = texels[atlas_texel(atlas, r, {x, y, z}, a)];
+            CHECK(t == -1);  // no two cells share a texel
+            t = code(r, x, y, z, a);
+          }
   std::size_t wrong = 0;
   for (std::size_t r = 0; r < grids.size(); ++r) {
     const volume_grid& g = grids[r];
-    for (int z = 0; z < g.dims.z; ++z)
-      for (int y = 0; y < g.dims.y; ++y)
-        for (int x = 0; x < g.dims.x; ++x) {
-          const glm::vec3 centre = glm::vec3(g.origin) + (glm::vec3(x, y, z) + 0.5f) * glm::vec3(g.scale);
-          const glm::vec3 uvw = shader::dst_volume_texcoord(centre, glm::vec3(g.origin), glm::vec3(g.scale), glm::vec3(atlas.offsets[r]),
-                                                            glm::vec3(g.dims), glm::vec3(atlas.size));
-          const glm::ivec3 t = glm::ivec3(glm::floor(uvw * glm::vec3(atlas.size)));
-          const int got = texels[std::size_t((t.z * atlas.size.y + t.y) * atlas.size.x + t.x)];
-          wrong += got != int(r * 10000 + (z * 100 + y) * 10 + x);
-          // Far outside its region a particle still reads its own region's border, never a neighbour.
-          const glm::vec3 far = shader::dst_volume_texcoord(centre + glm::vec3(100.0f), glm::vec3(g.origin), glm::vec3(g.scale),
-                                                            glm::vec3(atlas.offsets[r]), glm::vec3(g.dims), glm::vec3(atlas.size));
-          const float texel_x = far.x * float(atlas.size.x);
-          wrong += texel_x < float(atlas.offsets[r].x) + 0.5f - 1e-4f || texel_x > float(atlas.offsets[r].x + g.dims.x) - 0.5f + 1e-4f;
-        }
+    for (int a = 0; a < axes; ++a) {
+      const glm::vec3 offset = glm::vec3(atlas.offsets[r]) + glm::vec3(0.0f, float(a * atlas.slab), 0.0f);
+      for (int z = 0; z < g.dims.z; ++z)
+        for (int y = 0; y < g.dims.y; ++y)
+          for (int x = 0; x < g.dims.x; ++x) {
+            const glm::vec3 centre = glm::vec3(g.origin) + (glm::vec3(x, y, z) + 0.5f) * glm::vec3(g.scale);
+            const glm::vec3 uvw = shader::dst_volume_texcoord(centre, glm::vec3(g.origin), glm::vec3(g.scale), offset,
+                                                              glm::vec3(g.dims), glm::vec3(atlas.size));
+            const glm::ivec3 t = glm::ivec3(glm::floor(uvw * glm::vec3(atlas.size)));
+            wrong += texels[std::size_t((t.z * atlas.size.y + t.y) * atlas.size.x + t.x)] != code(r, x, y, z, a);
+            // Far outside its region a particle still reads its own region and axis, never a neighbour.
+            const glm::vec3 far = shader::dst_volume_texcoord(centre + glm::vec3(100.0f), glm::vec3(g.origin), glm::vec3(g.scale),
+                                                              offset, glm::vec3(g.dims), glm::vec3(atlas.size));
+            const glm::vec3 texel = far * glm::vec3(atlas.size);
+            for (int k = 0; k < 3; ++k)
+              wrong += texel[k] < offset[k] + 0.5f - 1e-3f || texel[k] > offset[k] + float(g.dims[k]) - 0.5f + 1e-3f;
+          }
+    }
   }
   CHECK(wrong == 0u);
 }

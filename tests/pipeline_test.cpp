@@ -41,11 +41,11 @@ static_assert(everything::shadow_bytes_per_texel == 8 && everything::has_shadow_
 static_assert(pipeline<effect_set<effect::shadows>>::shadow_bytes_per_texel == 4);
 
 TEST_CASE("each rung of the ladder calls for exactly one effect more, with a reason", "[pipeline][features]") {
-  const rung rungs[] = {rung::nothing, rung::shadows, rung::glass, rung::refractive, rung::seen};
-  const effect added[] = {effect::shadows, effect::transparency, effect::refraction, effect::transparent_shadows};
+  const effect added[] = {effect::shadows, effect::transparency, effect::refraction, effect::transparent_shadows,
+                          effect::light_volumes};
   CHECK(scene_features(effect_scene(rung::nothing)).empty());
-  for (int i = 0; i < 4; ++i) {
-    const auto before = scene_features(effect_scene(rungs[i])), after = scene_features(effect_scene(rungs[i + 1]));
+  for (int i = 0; i < 5; ++i) {
+    const auto before = scene_features(effect_scene(testing::all_rungs[i])), after = scene_features(effect_scene(testing::all_rungs[i + 1]));
     INFO("rung " << i + 1);
     CHECK(effects_of(after) == effects_of(before).with(added[i]));
     CHECK_FALSE(effects_of(before).has(added[i]));
@@ -53,12 +53,13 @@ TEST_CASE("each rung of the ladder calls for exactly one effect more, with a rea
   }
   CHECK(scene_features(effect_scene(rung::seen)).back().why ==
         "lights[1] casts shadows and its cone reaches objects[2], which is transparent");
+  CHECK(scene_features(effect_scene(rung::particles)).back().why == "particles[0] draws 60 particles of material 3");
 }
 
 TEST_CASE("the plans of neighbouring rungs differ by exactly the added effect's targets and switches", "[pipeline]") {
   auto plan = [](rung r) { return plan_pipeline(effects_of(scene_features(effect_scene(r)))); };
   const pipeline_plan nothing = plan(rung::nothing), shadows = plan(rung::shadows), glass = plan(rung::glass),
-                      refractive = plan(rung::refractive), seen = plan(rung::seen);
+                      refractive = plan(rung::refractive), seen = plan(rung::seen), smoke = plan(rung::particles);
   // A scene with no glass and no shadows: plain deferred shading.
   CHECK(nothing.passes.size() == 3);
   CHECK(switches_of(nothing).empty());
@@ -77,8 +78,13 @@ TEST_CASE("the plans of neighbouring rungs differ by exactly the added effect's 
   CHECK(minus(targets_of(seen), targets_of(refractive)) == std::set<std::string>{"shadow.colour"});
   CHECK(minus(switches_of(seen), switches_of(refractive)) ==
         std::set<std::string>{"shadow: DST_TRANSPARENT_SHADOWS", "light: DST_TRANSPARENT_SHADOWS"});
+  // Smoke: the light volumes' buffer and atlas (not screen-sized), the bake and the particle pass.
+  CHECK(minus(targets_of(smoke), targets_of(seen)) == std::set<std::string>{"volume.texels", "volume.atlas"});
+  CHECK(minus(switches_of(smoke), switches_of(seen)) ==
+        std::set<std::string>{"bake: DST_LIGHT_VOLUMES", "particles: DST_LIGHT_VOLUMES"});
+  CHECK(smoke.bytes_per_pixel == seen.bytes_per_pixel);
   for (const pipeline_plan* p : {&nothing, &shadows, &glass, &refractive, &seen})
-    CHECK(minus(switches_of(*p), switches_of(seen)).empty());
+    CHECK(minus(switches_of(*p), switches_of(smoke)).empty());
 }
 
 TEST_CASE("the run-time plan of a set is the compile-time plan of that set", "[pipeline]") {

@@ -3,6 +3,7 @@
 
 #include <map>
 
+#include <dstrans/particles.hpp>
 #include <dstrans/scene.hpp>
 #include <scene_json.hpp>
 
@@ -32,7 +33,8 @@ const char* const good =
         "lights": [{"type": "spot", "position": [0, 3, 2], "direction": [0, -1, -0.5], "colour": [1, 0.9, 0.8],
                     "intensity": 2, "range": 8, "inner_angle": 20, "outer_angle": 30, "shadows": true},
                    {"type": "point", "position": [1, 2, 1], "range": 5},
-                   {"type": "directional", "direction": [0.3, -1, 0.2], "intensity": 0.3}]})";
+                   {"type": "directional", "direction": [0.3, -1, 0.2], "intensity": 0.3}],
+        "particles": [{"material": "wall", "base": [1, 0, 0], "radius": 0.3, "height": 1.5, "size": 0.2, "count": 50, "seed": 4}]})";
 
 // The scene `good` with `from` replaced by `to`.
 std::string edit(const std::string& from, const std::string& to) {
@@ -94,6 +96,11 @@ TEST_CASE("a good scene file loads", "[scene]") {
   CHECK(s->lights[1].kind == light_kind::point);
   CHECK(s->view.fov_y == 50.0f);
   CHECK(s->ambient == glm::vec3(0.1f));
+  REQUIRE(s->particles.size() == 1);
+  CHECK(s->particles[0].material == 1);
+  CHECK(s->particles[0].base == glm::vec3(1, 0, 0));
+  CHECK(s->particles[0].count == 50);
+  CHECK(s->particles[0].seed == 4u);
 }
 
 TEST_CASE("bad scene files get an error that names the field", "[scene]") {
@@ -114,6 +121,9 @@ TEST_CASE("bad scene files get an error that names the field", "[scene]") {
       {R"({"camera": {"position": [0, 1, 5], "target": [0, 1, 0]}, "materials": {"a": {}}, "objects": []})",
        "good.json: objects: expected an array with at least one object"},
       {"[]", "good.json: expected an object"},
+      {edit("\"material\": \"wall\", \"base\"", "\"material\": \"smoke\", \"base\""), "good.json: particles[0].material: unknown material 'smoke'"},
+      {edit("\"count\": 50", "\"count\": -1"), "good.json: particles[0].count: -1 is outside"},
+      {edit("\"seed\": 4", "\"seeds\": 4"), "good.json: particles[0].seeds: unknown key"},
   };
   for (const auto& [text, message] : cases) {
     const auto s = parse_scene(text, "good.json");
@@ -152,4 +162,56 @@ TEST_CASE("glass_room and its variants: the thesis's scene at equal triangle cou
   CHECK(shares[0] == Approx(0.35).margin(0.04));  // about a third
   CHECK(shares[1] == Approx(0.17).margin(0.005));
   CHECK(shares[2] == 0.0);
+}
+
+TEST_CASE("particle systems: the same particles for a seed, centred inside their bounds, drawn back to front facing the camera",
+          "[scene][particles]") {
+  particle_system ps;
+  ps.base = {1.0f, 0.5f, -2.0f};
+  ps.radius = 0.6f;
+  ps.height = 2.0f;
+  ps.size = 0.3f;
+  ps.count = 200;
+  const std::vector<particle> a = emit(ps), again = emit(ps);
+  REQUIRE(a.size() == 200u);
+  ps.seed = 2;
+  const std::vector<particle> other = emit(ps);
+  bool differs = false;
+  const auto [lo, hi] = particle_bounds(ps);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    CHECK(a[i].position == again[i].position);
+    differs = differs || a[i].position != other[i].position;
+    CHECK(a[i].size <= ps.size);
+    CHECK(a[i].alpha > 0.0f);
+    CHECK(a[i].alpha <= 1.0f);
+    // Every centre is in the box the light volume spans.
+    CHECK(glm::all(glm::lessThanEqual(lo, a[i].position)));
+    CHECK(glm::all(glm::lessThanEqual(a[i].position, hi)));
+  }
+  CHECK(differs);
+
+  scene s;
+  s.materials = {material{}};
+  s.particles = {ps, ps};
+  s.particles[1].base = {-1.0f, 0.0f, 1.0f};
+  s.view.position = {0.0f, 2.0f, 6.0f};
+  const std::vector<particle_vertex> quads = particle_quads(s, s.view);
+  REQUIRE(quads.size() == 2u * 200u * 6u);
+  const glm::mat4 view = s.view.view();
+  float last = -INFINITY;
+  std::size_t systems[2] = {};
+  for (std::size_t q = 0; q < quads.size(); q += 6) {
+    // The quad's centre, its distance along the view direction (farther first), its plane facing the camera.
+    const glm::vec3 centre = (quads[q].position + quads[q + 2].position) * 0.5f;
+    const float depth = (view * glm::vec4(centre, 1.0f)).z;
+    CHECK(depth >= last - 1e-4f);
+    last = depth;
+    const glm::vec3 across = glm::vec3(view * glm::vec4(quads[q + 2].position - quads[q].position, 0.0f));
+    CHECK(std::abs(across.z) < 1e-4f);
+    CHECK(quads[q].corner == glm::vec2(-1.0f, -1.0f));
+    CHECK(quads[q + 2].corner == glm::vec2(1.0f, 1.0f));
+    ++systems[quads[q].system];
+  }
+  CHECK(systems[0] == 200u);
+  CHECK(systems[1] == 200u);
 }

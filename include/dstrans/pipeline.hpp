@@ -23,12 +23,13 @@
 namespace dstrans {
 
 // A render target (or buffer) of the plan: a Table's target, the shadow map's (one set, reused by every
-// light), or the k-buffer's.
+// light), the k-buffer's, or the light volumes'.
 struct planned_target {
   std::string name;    // "gbuffer.RT0", ..., "light.RT0", "shadow.depth", "shadow.colour", "kbuffer.heads", ...
   std::string format;  // as the thesis's tables name formats ("RGBA8"), or "R32UI", or "buffer"
-  int bytes_per_pixel;
+  int bytes_per_pixel;  // a pixel, or a texel of the shadow map or the volume atlas
   bool shadow_map;     // sized as the shadow map, not the screen
+  bool volume = false;  // sized as the light volumes' atlas (a texel per cell and axis), not the screen
 };
 
 // The k-buffer's node pool, in nodes per screen pixel: fragments that find the pool used up go to the
@@ -69,6 +70,7 @@ struct pipeline {
   static constexpr bool has_shadows = set.has(effect::shadows);
   static constexpr bool has_shadow_colour = set.has(effect::transparent_shadows);
   static constexpr bool many_layers = set.has(effect::many_layers);
+  static constexpr bool light_volumes = set.has(effect::light_volumes);
   static constexpr int screen_bytes_per_pixel = thesis_gbuffer::bytes_per_pixel + thesis_light_buffer::bytes_per_pixel;
   static constexpr int shadow_bytes_per_texel = !has_shadows         ? 0
                                                 : has_shadow_colour ? thesis_shadow_map::bytes_per_pixel
@@ -132,8 +134,18 @@ struct pipeline {
       p.passes.push_back({"capture", {"gbuffer.RT3"}, capture_writes, on});
       p.passes.push_back({"resolve", resolve_reads, {"output"}, on});
     }
+    if constexpr (light_volumes) {
+      // S2: the light of each system's bounds baked into its region of the atlas (an accumulation buffer,
+      // then the filtered texture), each shadowed spot light's dispatch right after its shadow pass; the
+      // particles, sorted, over the frame.
+      p.targets.push_back({"volume.texels", "buffer", 16, false, true});
+      p.targets.push_back({"volume.atlas", info(format::rgba32f).name, info(format::rgba32f).bytes_per_pixel, false, true});
+      const std::vector<std::string> on{effect_switch(effect::light_volumes)};
+      p.passes.push_back({"bake", shadow, {"volume.texels", "volume.atlas"}, on});
+      p.passes.push_back({"particles", {"volume.atlas", "gbuffer.RT3"}, {"output"}, on});
+    }
     for (const planned_target& t : p.targets)
-      if (!t.shadow_map) p.bytes_per_pixel += t.bytes_per_pixel;
+      if (!t.shadow_map && !t.volume) p.bytes_per_pixel += t.bytes_per_pixel;
     return p;
   }
 };

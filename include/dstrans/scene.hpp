@@ -70,12 +70,25 @@ struct object {
   std::uint32_t material = 0;  // index into scene::materials
 };
 
+// A particle system (S2's smoke): `count` camera-facing quads of half-width `size` in a plume that rises
+// `height` above `base`, widening from radius / 4 at the bottom to `radius` at the top; drawn back to front
+// with soft alpha (the material's alpha at a quad's centre, fading to 0 at its rim) over the deferred frame
+// and lit from a light volume over its bounds. `seed` picks the particles (the same on every machine).
+struct particle_system {
+  std::uint32_t material = 0;  // index into scene::materials: its diffuse colour and alpha
+  glm::vec3 base{0.0f};
+  float radius = 0.5f, height = 2.0f, size = 0.25f;
+  int count = 100;
+  std::uint32_t seed = 1;
+};
+
 struct scene {
   std::vector<material> materials;
   std::vector<object> objects;
   std::vector<light> lights;
   camera view;
   glm::vec3 ambient{0.05f};
+  std::vector<particle_system> particles;
 };
 
 // A whole scene in world space, for one draw call: vertex i has positions[i], normals[i], materials[i].
@@ -200,18 +213,26 @@ inline shape shape_bottle(float radius, float height, int slices) {
                          slices);
 }
 
+namespace detail {
+// A PCG-style hash stream in [0, 1): deterministic across compilers and standard libraries.
+struct random_stream {
+  std::uint32_t state;
+  explicit random_stream(std::uint32_t seed) : state(seed * 747796405u + 2891336453u) {}
+  float operator()() {
+    state = state * 747796405u + 2891336453u;
+    std::uint32_t w = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return float((w >> 22u) ^ w) * (1.0f / 4294967296.0f);
+  }
+};
+}  // namespace detail
+
 // Hair: `strands` strands rooted on the upper half of a sphere of `radius` around the origin, each
 // `length` long in `segments` pieces, falling under gravity with a little random curl, drawn as two
 // crossed ribbons `width` wide so that no view sees them edge-on. Normals hold the strand's tangent
 // (material::hair). `seed` picks the strands (the same seed, the same hair on every machine).
 inline shape shape_hair(float radius, int strands, float length, float width, int segments, std::uint32_t seed) {
   shape s;
-  std::uint32_t state = seed * 747796405u + 2891336453u;
-  auto next = [&state]() {  // PCG-style hash: deterministic across compilers and standard libraries
-    state = state * 747796405u + 2891336453u;
-    std::uint32_t w = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return float((w >> 22u) ^ w) * (1.0f / 4294967296.0f);
-  };
+  detail::random_stream next(seed);
   const int n = segments < 1 ? 1 : segments;
   for (int k = 0; k < strands; ++k) {
     const float phi = 6.2831853f * next(), up = 0.15f + 0.85f * next();  // the upper half, not the bottom

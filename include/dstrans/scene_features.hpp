@@ -14,7 +14,8 @@
 // - transparent_shadows: such a light whose cone reaches a transparent object (the shadow map's colour
 //   target and the lookup of Eq. 3.1). Reaching is decided by the object's bounding sphere against the
 //   cone and range, so it is conservative: an occluded pane still counts;
-// - many_layers: an object whose material is hair (per-pixel lists and the k-buffer resolve of S1).
+// - many_layers: an object whose material is hair (per-pixel lists and the k-buffer resolve of S1);
+// - light_volumes: a particle system with particles (S2: the bake into a 3D texture, the particle pass).
 #pragma once
 
 #include <algorithm>
@@ -28,9 +29,9 @@
 
 namespace dstrans {
 
-enum class effect : unsigned { transparency, refraction, shadows, transparent_shadows, many_layers };
-constexpr effect all_effects[] = {effect::transparency, effect::refraction, effect::shadows, effect::transparent_shadows,
-                                  effect::many_layers};
+enum class effect : unsigned { transparency, refraction, shadows, transparent_shadows, many_layers, light_volumes };
+constexpr effect all_effects[] = {effect::transparency, effect::refraction,  effect::shadows,
+                                  effect::transparent_shadows, effect::many_layers, effect::light_volumes};
 
 // The effect's name in plans and reports.
 constexpr const char* effect_name(effect e) {
@@ -40,6 +41,7 @@ constexpr const char* effect_name(effect e) {
     case effect::shadows: return "shadows";
     case effect::transparent_shadows: return "transparent_shadows";
     case effect::many_layers: return "many_layers";
+    case effect::light_volumes: return "light_volumes";
   }
   return "";
 }
@@ -52,6 +54,7 @@ constexpr const char* effect_switch(effect e) {
     case effect::shadows: return "DST_SHADOWS";
     case effect::transparent_shadows: return "DST_TRANSPARENT_SHADOWS";
     case effect::many_layers: return "DST_MANY_LAYERS";
+    case effect::light_volumes: return "DST_LIGHT_VOLUMES";
   }
   return "";
 }
@@ -66,7 +69,7 @@ struct effects {
   constexpr bool operator==(effects o) const { return bits == o.bits; }
   constexpr bool operator!=(effects o) const { return bits != o.bits; }
   // Every effect, in the order of all_effects.
-  static constexpr effects all() { return {(1u << 5) - 1u}; }
+  static constexpr effects all() { return {(1u << 6) - 1u}; }
   std::vector<std::string> names() const {
     std::vector<std::string> out;
     for (effect e : all_effects)
@@ -154,6 +157,10 @@ inline std::vector<feature> scene_features(const scene& s) {
     add(effect::transparency, what);
     if (s.materials[m].refractive) add(effect::refraction, what + ", refractive");
   }
+  for (std::size_t i = 0; i < s.particles.size(); ++i)
+    if (s.particles[i].count > 0)
+      add(effect::light_volumes, "particles[" + std::to_string(i) + "] draws " + std::to_string(s.particles[i].count) +
+                                     " particles of material " + std::to_string(s.particles[i].material));
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const light& l = s.lights[i];
     if (!casts_shadows(l)) continue;
