@@ -43,8 +43,9 @@ def ratio(a, b):
 def main():
     results_path, out = sys.argv[1], sys.argv[2]
     everything = json.load(open(results_path))
-    results = [r for r in everything if r["scene"] != "hair"]  # the thesis's comparisons
+    results = [r for r in everything if r["scene"] not in ("hair", "smoke")]  # the thesis's comparisons
     layers = [r for r in everything if r["scene"] == "hair"]   # S1
+    volumes = [r for r in everything if r["scene"] == "smoke"]  # S2
     lights = sorted({r["settings"]["lights"] for r in results})
     first = results[0]
     size = "%dx%d" % (first["settings"]["width"], first["settings"]["height"])
@@ -221,6 +222,8 @@ def main():
     w("")
     if layers:
         write_layers(w, layers)
+    if volumes:
+        write_volumes(w, volumes)
     open(os.path.join(out, "report.md"), "w").write("\n".join(lines))
 
     import matplotlib
@@ -242,6 +245,8 @@ def main():
     fig.savefig(os.path.join(out, "accuracy_vs_time.png"))
     if layers:
         plot_layers(plt, layers, os.path.join(out, "layers.png"))
+    if volumes:
+        plot_volumes(plt, volumes, os.path.join(out, "volumes.png"))
 
 
 # S1's published figures (TECHNIQUES.md): at k = 8, RMSE 9 against forward over hair pixels, tailless 26,
@@ -308,6 +313,72 @@ def plot_layers(plt, layers, path):
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     fig.suptitle("k-buffer on hair.json, %s, zoom %.2f" % (layers[0]["backend"], zoom))
+    fig.tight_layout()
+    fig.savefig(path)
+
+
+# S2's published figures (TECHNIQUES.md): HD 5670, 3 particle systems, 16x24x16 cells each, six axes:
+# forward 9.47 ms, light volumes 1.347 ms (bake 0.311 + render 1.016), 7x; no error reported.
+S2 = {"forward": 9.47, "volumes": 1.347, "bake": 0.311, "render": 1.016}
+
+
+def write_volumes(w, volumes):
+    w("## Light volumes: smoke lit from baked 3D textures (S2)")
+    w("")
+    first = volumes[0]["settings"]
+    w("smoke.json: %d particle systems, %d particles, %d lights (directional, point, and three shadowed spot lights, "
+      "one behind a crate and one behind green glass), over %d smoke pixels. The reference lights every particle "
+      "fragment by every light (Lambert, the spot lights through copies of their shadow maps); light volumes bake "
+      "the lights into a grid of N cells a side over each system, on S2's six or four axes or on fourteen (the six "
+      "and the cube's corners, a user-supplied set), and the particles read it trilinearly. Bake and particle times "
+      "are GPU ms; speed-up is the reference's particle pass over bake plus particle pass; RMSE (0-255) is against "
+      "the reference, on all pixels and on smoke pixels. S2 measured (HD 5670, 16x24x16 cells, six axes): forward "
+      "%.2f ms, volumes %.3f ms (bake %.3f + render %.3f), %.1fx; it reported no error."
+      % (first["systems"], first["particles"], first["lights"], first["smoke_pixels"], S2["forward"],
+         S2["volumes"], S2["bake"], S2["render"], S2["forward"] / S2["volumes"]))
+    w("")
+    w("| backend | lighting | cells | bake ms | particles ms | speed-up | RMSE | RMSE on smoke |")
+    w("|---|---|---|---|---|---|---|---|")
+
+    def reference(r):
+        return next(x for x in volumes if x["backend"] == r["backend"] and x["technique"] == "volumes-forward")
+    for r in volumes:
+        s = r["settings"]
+        w("| %s | %s | %s | %.2f | %.2f | %.2fx | %.2f | %.2f |" % (
+            r["backend"], r["technique"][len("volumes-"):], "-" if s["cells"] is None else s["cells"], r["bake_ms"],
+            r["particles_ms"], reference(r)["particles_ms"] / r["lighting_ms"], r["rmse"], r["rmse_transparent"]))
+    w("")
+    for backend in sorted({r["backend"] for r in volumes}):
+        rows = [r for r in volumes if r["backend"] == backend and r["technique"] != "volumes-forward"]
+        best = min(rows, key=lambda r: r["rmse"])
+        fastest = max(rows, key=lambda r: reference(r)["particles_ms"] / r["lighting_ms"])
+        w("On %s the most accurate volume is %s at %d cells (RMSE %.2f, %.2fx the reference's speed); the fastest is "
+          "%s at %d cells (%.2fx, RMSE %.2f)." % (
+              backend, best["technique"][len("volumes-"):], best["settings"]["cells"], best["rmse"],
+              reference(best)["particles_ms"] / best["lighting_ms"], fastest["technique"][len("volumes-"):],
+              fastest["settings"]["cells"], reference(fastest)["particles_ms"] / fastest["lighting_ms"], fastest["rmse"]))
+        w("")
+    w("![bake and particle time and RMSE against grid size](volumes.png)")
+    w("")
+
+
+def plot_volumes(plt, volumes, path):
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4), dpi=110)
+    volumes = [r for r in volumes if r["backend"] == volumes[0]["backend"]]
+    ref = next(r for r in volumes if r["technique"] == "volumes-forward")
+    for lighting, colour in (("six-axes", "tab:blue"), ("four-axes", "tab:orange"), ("fourteen-axes", "tab:green")):
+        pts = sorted((r["settings"]["cells"], r["rmse"], r["bake_ms"] + r["particles_ms"]) for r in volumes
+                     if r["technique"] == "volumes-" + lighting)
+        if pts:
+            a.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=lighting, color=colour)
+            b.plot([p[0] for p in pts], [p[2] for p in pts], marker="o", label=lighting + " (bake + particles)", color=colour)
+    b.axhline(ref["particles_ms"], color="tab:red", linestyle="--", label="forward reference")
+    for ax, label in ((a, "RMSE against the reference (0-255)"), (b, "GPU ms")):
+        ax.set_xlabel("cells a side")
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Light volumes on smoke.json, %s" % volumes[0]["backend"])
     fig.tight_layout()
     fig.savefig(path)
 

@@ -173,6 +173,69 @@ result<json> layers_records(const scene& hair, const render::options& base, bool
   return records;
 }
 
+// S2's comparison (TECHNIQUES.md): smoke.json's particles lit per fragment by every light (the reference)
+// against light volumes of several grid sizes on each basis: bake time, particle pass time, RMSE against
+// the reference on all pixels and on the pixels the smoke covers, as result records.
+template <class Draw>
+result<json> volume_records(const scene& smoke, const render::options& base, bool quick, const std::string& backend, Draw&& draw) {
+  using P = render::options::particle_light;
+  json records = json::array();
+  render::options o = base;
+  o.particles = P::forward;
+  auto reference = draw(smoke, o);
+  if (!reference) return failure{reference.error()};
+  scene bare = smoke;
+  bare.particles.clear();
+  auto without = draw(bare, o);
+  if (!without) return failure{without.error()};
+  std::vector<bool> mask(std::size_t(o.width) * std::size_t(o.height));
+  std::size_t smoke_pixels = 0;
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    for (std::size_t c = 0; c < 3; ++c) mask[i] = mask[i] || reference->final_image.rgba[4 * i + c] != without->final_image.rgba[4 * i + c];
+    smoke_pixels += mask[i];
+  }
+  std::size_t particles = 0;
+  for (const particle_system& ps : smoke.particles) particles += std::size_t(ps.count);
+  auto record = [&](P lighting, int cells, const render::frame& f) {
+    const error e = compare(f.final_image, reference->final_image, mask);
+    const bool volumes = lighting != P::forward;
+    const double bake = volumes ? f.pass_ms.at("bake") : 0.0, particle_ms = f.pass_ms.at("particles");
+    records.push_back({{"technique", std::string("volumes-") + render::particle_light_name(lighting)},
+                       {"scene", "smoke"},
+                       {"backend", backend},
+                       {"settings", {{"cells", volumes ? json(cells) : json(nullptr)},
+                                     {"axes", volumes ? json(render::particle_basis(o).axes.size()) : json(nullptr)},
+                                     {"systems", smoke.particles.size()}, {"particles", particles},
+                                     {"lights", smoke.lights.size()}, {"smoke_pixels", smoke_pixels},
+                                     {"width", base.width}, {"height", base.height}, {"frames", f.frames}}},
+                       {"frame_ms", f.frame_ms},
+                       {"frame_ms_spread", f.frame_ms_spread},
+                       {"pass_ms", f.pass_ms},
+                       {"bake_ms", bake},
+                       {"particles_ms", particle_ms},
+                       {"lighting_ms", bake + particle_ms},
+                       {"bytes_per_pixel", nullptr},
+                       {"render_targets", nullptr},
+                       {"reference", "forward reference (every particle fragment lit by every light)"},
+                       {"rmse", e.rmse},
+                       {"rmse_transparent", e.rmse_transparent},
+                       {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)},
+                       {"leak_pixels", nullptr}});
+  };
+  record(P::forward, 0, *reference);
+  const std::vector<int> sizes = quick ? std::vector<int>{8, 32} : std::vector<int>{8, 12, 16, 24, 32};
+  for (P lighting : {P::six_axes, P::four_axes, P::fourteen_axes})
+    for (int cells : sizes) {
+      o.particles = lighting;
+      o.volume_cells = cells;
+      auto f = draw(smoke, o);
+      if (!f) return failure{f.error()};
+      record(lighting, cells, *f);
+    }
+  std::fprintf(stderr, "smoke: %zu particles over %zu pixels\n", particles, smoke_pixels);
+  return records;
+}
+
 }  // namespace
 
 int bench(std::vector<std::string> args) {
@@ -312,7 +375,8 @@ int bench(std::vector<std::string> args) {
       const pipeline_plan plan = render::plan_of(s, options_of(c.method)).pipeline;
       std::int64_t memory = 0;
       for (const planned_target& t : plan.targets)
-        memory += std::int64_t(t.bytes_per_pixel) *
+        if (!t.volume)  // the volume atlas is sized by particle systems, which these scenes do not have
+          memory += std::int64_t(t.bytes_per_pixel) *
                   (t.shadow_map ? std::int64_t(base.shadow_size) * base.shadow_size : std::int64_t(base.width) * base.height);
       json rec{{"technique", render::technique_name(c.method)},
                {"scene", c.scene},
@@ -338,20 +402,23 @@ int bench(std::vector<std::string> args) {
                    f->frame_ms, e.rmse, tty ? "" : "\n");
     }
     if (tty) std::fputc('\n', stderr);
-    // S1: many layers on hair.json, on this backend and on the other where the machine has it.
+    // S1: many layers on hair.json, and S2: light volumes on smoke.json, on this backend and on the other
+    // where the machine has it.
     auto hair = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/hair.json");
-    if (!hair) {
-      std::fprintf(stderr, "dstrans bench: %s\n", hair.error().c_str());
-      return 1;
-    }
+    auto smoke = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/smoke.json");
+    for (const auto* loaded : {&hair, &smoke})
+      if (!*loaded) {
+        std::fprintf(stderr, "dstrans bench: %s\n", loaded->error().c_str());
+        return 1;
+      }
     for (const std::string& b : {backend, std::string(backend == "gl" ? "vk" : "gl")}) {
       auto other = b == backend ? result<std::unique_ptr<gpu>>(failure{"unused"}) : open_gpu(b);
       if (b != backend && !other) {
-        std::fprintf(stderr, "dstrans bench: hair on %s skipped: %s\n", b.c_str(), other.error().c_str());
+        std::fprintf(stderr, "dstrans bench: hair and smoke on %s skipped: %s\n", b.c_str(), other.error().c_str());
         continue;
       }
       const gpu& on = b == backend ? **g : **other;
-      auto layers = layers_records(*hair, base, quick, b, [&](const scene& s, const render::options& o) -> result<render::frame> {
+      auto draw = [&](const scene& s, const render::options& o) -> result<render::frame> {
 #ifdef DSTRANS_HAVE_GL
         if (on.gl) return render::render_gl(s, o, DSTRANS_SHADER_DIR);
 #endif
@@ -359,12 +426,19 @@ int bench(std::vector<std::string> args) {
         if (on.vk) return render::render_vk(*on.vk, s, o, DSTRANS_SHADER_DIR);
 #endif
         return failure{"no backend"};
-      });
+      };
+      auto layers = layers_records(*hair, base, quick, b, draw);
       if (!layers) {
         std::fprintf(stderr, "dstrans bench: hair on %s: %s\n", b.c_str(), layers.error().c_str());
         return 1;
       }
       for (const json& r : *layers) results.push_back(r);
+      auto volumes = volume_records(*smoke, base, quick, b, draw);
+      if (!volumes) {
+        std::fprintf(stderr, "dstrans bench: smoke on %s: %s\n", b.c_str(), volumes.error().c_str());
+        return 1;
+      }
+      for (const json& r : *volumes) results.push_back(r);
     }
     std::ofstream(out + "/results.json") << results.dump(1) << "\n";
     // report.md and the plot come from results.json alone (bench/report.py, matplotlib); Debian's python3

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <dstrans/particles.hpp>
+
 namespace dstrans::render {
 
 namespace {
@@ -35,6 +37,56 @@ bool camera_inside(const camera& c, const light& l) {
 
 volume volume_of(const camera& c, const light& l) {
   return shape_of(l) == volume::fullscreen || camera_inside(c, l) ? volume::fullscreen : shape_of(l);
+}
+
+basis particle_basis(const options& o) {
+  if (o.particles == options::particle_light::four_axes) return four_axes();
+  basis b = six_axes();
+  if (o.particles == options::particle_light::fourteen_axes)  // a user-supplied set: the cube's faces and corners
+    for (int i = 0; i < 8; ++i) b.axes.push_back(glm::normalize(glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1)));
+  return b;
+}
+
+volume_atlas particle_atlas(const scene& s, const options& o) {
+  std::vector<volume_grid> grids;
+  const int n = std::clamp(o.volume_cells, 1, 256);
+  for (const particle_system& ps : s.particles) {
+    const auto [lo, hi] = particle_bounds(ps);
+    grids.push_back(fit_grid(lo, hi, glm::ivec3(n)));
+  }
+  return pack_volumes(grids, int(particle_basis(o).axes.size()));
+}
+
+volume_light volume_light_of(const light& l, std::size_t index) {
+  volume_light v;
+  const float kind = l.kind == light_kind::directional ? 0.0f : l.kind == light_kind::point ? 1.0f : 2.0f;
+  v.position_kind = glm::vec4(l.position, kind);
+  v.direction_range = glm::vec4(l.direction, l.range);
+  v.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
+  v.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), float(index), 0.0f, 0.0f);
+  return v;
+}
+
+std::vector<particle_region> particle_regions(const scene& s, const volume_atlas& a) {
+  std::vector<particle_region> out;
+  for (std::size_t r = 0; r < a.regions.size() && r < s.particles.size(); ++r) {
+    const volume_grid& g = a.regions[r];
+    out.push_back({glm::vec4(glm::vec3(g.origin), float(s.particles[r].material)), glm::vec4(glm::vec3(g.scale), float(a.slab)),
+                   glm::vec4(glm::vec3(a.offsets[r]), 0.0f), glm::vec4(glm::vec3(g.dims), 0.0f)});
+  }
+  return out;
+}
+
+particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o) {
+  particle_plan out;
+  out.on = p.on.has(effect::light_volumes) && !p.forward;
+  out.reference = out.on && o.particles == options::particle_light::forward;
+  out.baking = out.on && !out.reference;
+  out.atlas = particle_atlas(s, o);
+  for (std::size_t i = 0; i < s.lights.size(); ++i)
+    if (p.lookups[i] != shadow_mode::off) out.shadowed_lights.push_back(i);
+    else out.unshadowed_lights.push_back(volume_light_of(s.lights[i], i));
+  return out;
 }
 
 frame_plan plan_of(const scene& s, const options& o) {

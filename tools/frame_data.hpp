@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <dstrans/interlace.hpp>
+#include <dstrans/light_volume.hpp>
 #include <dstrans/light_mesh.hpp>
 #include <dstrans/pipeline.hpp>
 #include <dstrans/scene.hpp>
@@ -43,6 +44,11 @@ struct options {
   int kbuffer_k = 8;
   std::uint32_t kbuffer_nodes = 0;  // the node pool's size; 0: kbuffer_nodes_per_pixel a pixel
   enum class layers { forward, deferred, tailless, cheap, wboit } kbuffer_variant = layers::deferred;
+  // Particle systems (light_volumes, TECHNIQUES.md S2): lit from light volumes of `volume_cells` cells a
+  // side on S2's six or four axes or on fourteen (a user-supplied set: the six and the cube's eight
+  // corners), or by the forward reference, which lights each fragment by every light.
+  enum class particle_light { six_axes, four_axes, fourteen_axes, forward } particles = particle_light::six_axes;
+  int volume_cells = 16;
   // Effects planned even where the scene or the other options leave them nothing to do (the full
   // pipeline, for comparisons): refraction of strength 0, say, runs its code and moves no sample.
   effects force;
@@ -90,6 +96,16 @@ inline const char* layers_name(options::layers v) {
   return "?";
 }
 
+inline const char* particle_light_name(options::particle_light p) {
+  switch (p) {
+    case options::particle_light::six_axes: return "six-axes";
+    case options::particle_light::four_axes: return "four-axes";
+    case options::particle_light::fourteen_axes: return "fourteen-axes";
+    case options::particle_light::forward: return "forward";
+  }
+  return "?";
+}
+
 constexpr shadow_mode all_lookups[] = {shadow_mode::off, shadow_mode::opaque, shadow_mode::transparent};
 // How programs and pipelines of a lookup are labelled: "", " opaque shadows", " transparent shadows".
 inline const char* lookup_label(shadow_mode m) {
@@ -120,6 +136,31 @@ frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o);
 frame_block light_frame(const scene& s, const light& l, const options& o);
 std::vector<material_block> material_blocks(const scene& s);
 std::vector<light_block> light_blocks(const scene& s, const options& o);
+// Light volumes: the basis the options pick, the atlas of the scene's particle systems (a region of
+// options::volume_cells cells a side over each system's bounds), a light as the bake reads it (its index
+// in s.lights in cos_inner.y, for the shadow hook), and each system's region as the particle pass reads it.
+basis particle_basis(const options& o);
+volume_atlas particle_atlas(const scene& s, const options& o);
+volume_light volume_light_of(const light& l, std::size_t index);
+struct particle_region {
+  glm::vec4 origin_material;  // the region's first cell corner; w: the system's material
+  glm::vec4 scale_slab;       // a cell's size; w: the atlas's slab height
+  glm::vec4 offset;           // the region's first texel
+  glm::vec4 dims;             // its cells per axis
+};
+std::vector<particle_region> particle_regions(const scene& s, const volume_atlas& a);
+// What a frame does for particle systems (both backends): whether it draws them (deferred techniques),
+// by the forward reference or from baked volumes; the atlas; the shadowed lights, each baked in its own
+// dispatch (in light order, which is also the order of the reference's shadow-map layers); the rest,
+// baked together.
+struct particle_plan {
+  bool on = false, reference = false, baking = false;
+  volume_atlas atlas;
+  std::vector<std::size_t> shadowed_lights;
+  std::vector<volume_light> unshadowed_lights;
+};
+particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o);
+
 // The volume mesh a light is drawn with: none (full screen) for directional lights, and for lights whose
 // volume may hold the camera. The thesis draws those with front faces culled, but then back faces past
 // the far plane are clipped away and their pixels lose the light; a full-screen triangle cannot miss

@@ -35,6 +35,8 @@ struct frame {
   std::vector<std::uint32_t> kbuffer_heads;
   std::vector<glm::uvec4> kbuffer_nodes;
   std::uint32_t kbuffer_overflow = 0;
+  // The light volumes' atlas as the last bake left it (render::particle_atlas's texels, x fastest).
+  std::vector<glm::vec4> volume_texels;
   std::vector<std::pair<std::string, image>> buffers;  // in the order the passes make them
   std::map<std::string, double> pass_ms;  // the median over the frames rendered, per pass
   double frame_ms = 0.0;                   // the median frame (sum of its passes)

@@ -158,6 +158,8 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
     if (auto ok = add("capture pass", capture_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
     if (auto ok = add("resolve pass", resolve_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
   }
+  if (plan.on.has(effect::light_volumes))
+    if (auto ok = add("particle pass", particle_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
   return out;
 }
 
@@ -203,6 +205,47 @@ result<pass_sources> resolve_pass(const std::string& dir, shadow_mode shadows, c
   if (o.kbuffer_variant == options::layers::cheap) switches.push_back("DST_LAYERS_CHEAP");
   if (o.kbuffer_variant == options::layers::forward) switches.push_back("DST_LAYERS_FORWARD");
   if (auto ok = finish(p.fragment, dir, {"kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return p;
+}
+
+result<glsl::source> bake_pass(const std::string& dir, shadow_mode shadows, const options& o) {
+  glsl::source src;
+  std::string hook;
+  if (shadows != shadow_mode::off) {
+    add_shadow_layout(src, shadows, glsl::side::read);
+    if (shadows == shadow_mode::transparent) glsl::add_interlace<I>(src);
+    if (auto ok = finish(src, dir, {"lighting.glsl"}, shadow_switches(shadows)); !ok) return failure{ok.error()};
+    // The light's own entry in the frame's lights holds its shadow map's matrix (volume_light_of).
+    hook = "vec3 dst_volume_shadow(dst_volume_light l, vec3 p, vec3 light) {\n"
+           "  return dst_shadowed(light, p, lights[int(l.cos_inner.y + 0.5f)]);\n"
+           "}\n";
+  }
+  glsl::add_light_volume_bake(src, particle_basis(o), volume_lights_binding, hook);
+  return src;
+}
+
+result<pass_sources> particle_pass(const std::string& dir, shadow_mode shadows, const options& o) {
+  pass_sources p;
+  if (auto ok = finish(p.vertex, dir, {"particle.vert.glsl"}); !ok) return failure{ok.error()};
+  std::vector<std::string> switches;
+  if (o.particles == options::particle_light::forward) {
+    switches.push_back("DST_PARTICLES_FORWARD");
+    if (shadows != shadow_mode::off) {
+      for (const std::string& s : shadow_switches(shadows)) switches.push_back(s);
+      if (auto ok = p.fragment.add_file(dir + "/shadow_layers.glsl", switches); !ok) return failure{ok.error()};
+      add_shadow_layout(p.fragment, shadows, glsl::side::read);
+      if (shadows == shadow_mode::transparent) glsl::add_interlace<I>(p.fragment);
+    }
+  } else {
+    glsl::add_light_volume_read(p.fragment, particle_basis(o));
+  }
+  glsl::layout_options read;
+  read.sides = glsl::side::read;
+  read.first_binding = gbuffer_binding;
+  glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
+  std::vector<std::string> files{"particle.frag.glsl"};
+  if (o.particles == options::particle_light::forward && shadows != shadow_mode::off) files.insert(files.begin(), "lighting.glsl");
+  if (auto ok = finish(p.fragment, dir, files, switches); !ok) return failure{ok.error()};
   return p;
 }
 

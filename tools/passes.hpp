@@ -54,6 +54,17 @@ std::vector<target_desc> kbuffer_tail_targets();
 // Texture bindings of the tail targets in the resolve pass; image and buffer bindings of the lists.
 constexpr int kbuffer_tail_binding = 14, kbuffer_nodes_binding = 23, kbuffer_heads_binding = 24;
 
+// Light volumes (light_volumes, TECHNIQUES.md S2). The bake of options' basis: all unshadowed lights
+// (`shadows` off), or one shadowed spot light reading the shadow map of kind `shadows` through the
+// bake's shadow hook. The particle pass: lit from the atlas, or (options::particle_light::forward) by
+// every light, reading the shadow maps' copies in layers.
+result<glsl::source> bake_pass(const std::string& dir, shadow_mode shadows, const options& o);
+result<pass_sources> particle_pass(const std::string& dir, shadow_mode shadows, const options& o);
+// Bindings: the bake's lights, the atlas's texels and the region block (add_light_volume_bake's three);
+// the particle pass's regions, the atlas, and the shadow maps' layers (depth, colour).
+constexpr int volume_lights_binding = 25, volume_texels_binding = 26, volume_region_binding = 27,
+              particle_regions_binding = 28, volume_atlas_binding = 29, shadow_layers_binding = 30;
+
 // Every shader variant the deferred pipeline of `plan` compiles for scene `s`, named as its passes and
 // programs are labelled ("gbuffer pass", "light pass transparent shadows volume", ...).
 struct named_pass {

@@ -59,7 +59,7 @@ int plan(std::vector<std::string> args) {
         passes.push_back({{"name", pass.name}, {"targets", pass.writes}, {"reads", pass.reads}, {"switches", pass.switches}});
       for (const planned_target& t : p.targets)
         targets.push_back({{"name", t.name}, {"format", t.format}, {"bytes_per_pixel", t.bytes_per_pixel},
-                           {"size", t.shadow_map ? "shadow map" : "screen"}});
+                           {"size", t.shadow_map ? "shadow map" : t.volume ? "volume atlas" : "screen"}});
       const json out{{"effects", p.on.names()}, {"reasons", reasons}, {"passes", passes}, {"targets", targets},
                      {"bytes_per_pixel", p.bytes_per_pixel}};
       std::puts(out.dump().c_str());
@@ -75,7 +75,7 @@ int plan(std::vector<std::string> args) {
     std::printf("targets:\n");
     for (const planned_target& t : p.targets)
       std::printf("  %-21s %-8s %3d bytes a %s\n", t.name.c_str(), t.format.c_str(), t.bytes_per_pixel,
-                  t.shadow_map ? "shadow-map texel" : "pixel");
+                  t.shadow_map ? "shadow-map texel" : t.volume ? "volume-atlas texel" : "pixel");
     std::printf("%d bytes a pixel on screen\n", p.bytes_per_pixel);
     return 0;
   } catch (const usage_error& e) {

@@ -26,6 +26,9 @@ const char* const usage =
     "       [--float-targets]   light buffers and the final image in RGBA32F: no saturation, NaN kept\n"
     "       [--k N] [--layers forward|deferred|tailless|cheap|wboit]   hair (S1): fragments shaded fully, and\n"
     "                           the rest (wboit: weighted blended OIT instead of lists)\n"
+    "       [--particles six-axes|four-axes|fourteen-axes|forward] [--volume-cells N]   particle systems\n"
+    "                           (S2): lit from light volumes of N (1 to 64) cells a side on six, four or\n"
+    "                           fourteen axes, or per fragment (the reference)\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
@@ -54,6 +57,13 @@ int render(std::vector<std::string> args) {
     else if (layers == "wboit") o.kbuffer_variant = render::options::layers::wboit;
     else if (layers != "deferred")
       throw usage_error{"--layers must be forward, deferred, tailless, cheap or wboit, not '" + layers + "'"};
+    const std::string particles = take_option(args, "--particles", "six-axes");
+    if (particles == "four-axes") o.particles = render::options::particle_light::four_axes;
+    else if (particles == "fourteen-axes") o.particles = render::options::particle_light::fourteen_axes;
+    else if (particles == "forward") o.particles = render::options::particle_light::forward;
+    else if (particles != "six-axes")
+      throw usage_error{"--particles must be six-axes, four-axes, fourteen-axes or forward, not '" + particles + "'"};
+    o.volume_cells = to_int(take_option(args, "--volume-cells", "16"), 1, 64, "--volume-cells");
     const std::string bias = take_option(args, "--shadow-bias", "0.0005");
     try {
       std::size_t used = 0;

@@ -2,7 +2,10 @@
 #include "render_gl.hpp"
 
 #include <dstrans_gl.hpp>
+#include <cstddef>
 #include <memory>
+
+#include <dstrans/particles.hpp>
 
 #include "passes.hpp"
 
@@ -119,6 +122,30 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     resolve_prog = *rs;
   }
 
+  // Light volumes (S2): particle systems over the deferred frame, lit from the atlas baked each frame (all
+  // unshadowed lights in one dispatch a region, each shadowed spot light in its own right after its shadow
+  // pass), or by the forward reference, which needs every shadow map at once: each is copied into a layer.
+  const particle_plan smoke = particle_plan_of(s, plan, o);
+  const bool particles = smoke.on, particle_reference = smoke.reference, baking = smoke.baking;
+  const volume_atlas& atlas = smoke.atlas;
+  const std::vector<std::size_t>& shadowed_lights = smoke.shadowed_lights;
+  const std::vector<volume_light>& unshadowed_lights = smoke.unshadowed_lights;
+  GLuint bake_prog = 0, bake_shadowed_prog = 0, particle_prog = 0;
+  if (particles) {
+    for (const bool shadowed : {false, true}) {
+      if (!baking || (shadowed ? shadowed_lights.empty() : unshadowed_lights.empty())) continue;
+      auto src = bake_pass(shader_dir, shadowed ? mode : shadow_mode::off, o);
+      if (!src) return failure{src.error()};
+      auto prog = gl::make_compute_program(*src, shadowed ? "bake pass shadowed" : "bake pass");
+      if (!prog) return failure{prog.error()};
+      r.programs.push_back(*prog);
+      (shadowed ? bake_shadowed_prog : bake_prog) = *prog;
+    }
+    auto p = r.program(particle_pass(shader_dir, mode, o), "particle pass");
+    if (!p) return failure{p.error()};
+    particle_prog = *p;
+  }
+
   // The scene as one mesh, the light indices, the volume meshes, and the blocks of frame.glsl.
   const scene_mesh m = flatten(s);
   GLuint scene_vao = 0, fullscreen_vao = 0;
@@ -212,6 +239,77 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     tail = *t;
     r.targets.push_back(tail);
   }
+  // The atlas's texels (the bake adds into them), the 3D texture they are copied to, each region's bake
+  // block, the lights per dispatch; the particles' regions and quads; the shadow maps' layers.
+  GLuint volume_texels = 0, atlas_texture = 0, particle_vao = 0, particle_quads_buffer = 0, unshadowed_buffer = 0;
+  GLuint shadow_layers[2] = {};
+  std::vector<GLuint> region_blocks, shadowed_buffers;
+  std::size_t particle_vertices = 0;
+  const glm::ivec3 atlas_size = glm::max(atlas.size, glm::ivec3(1));  // a forced effect with no system
+  const std::size_t atlas_texels = std::size_t(atlas_size.x) * std::size_t(atlas_size.y) * std::size_t(atlas_size.z);
+  auto upload_quads = [&](const dstrans::camera& c) {
+    const std::vector<particle_vertex> quads = particle_quads(s, c);
+    particle_vertices = quads.size();
+    if (!quads.empty()) glNamedBufferSubData(particle_quads_buffer, 0, GLsizeiptr(quads.size() * sizeof(particle_vertex)), quads.data());
+  };
+  if (particles) {
+    if (baking) {
+      volume_texels = r.buffer(std::vector<glm::vec4>(atlas_texels), "volume texels");
+      for (std::size_t k = 0; k < atlas.regions.size(); ++k)
+        region_blocks.push_back(r.buffer(std::vector<volume_bake_block>{bake_block(atlas, k)}, "volume region " + std::to_string(k)));
+      unshadowed_buffer = r.buffer(unshadowed_lights, "volume lights");
+      for (std::size_t i : shadowed_lights)
+        shadowed_buffers.push_back(r.buffer(std::vector<volume_light>{volume_light_of(s.lights[i], i)}, "volume light " + std::to_string(i)));
+      glCreateTextures(GL_TEXTURE_3D, 1, &atlas_texture);
+      r.textures.push_back(atlas_texture);
+      glTextureStorage3D(atlas_texture, 1, GL_RGBA32F, atlas_size.x, atlas_size.y, atlas_size.z);
+      glTextureParameteri(atlas_texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(atlas_texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(atlas_texture, wrap, GL_CLAMP_TO_EDGE);
+      gl::label(GL_TEXTURE, atlas_texture, "volume atlas");
+    } else if (any_shadows && !shadowed_lights.empty()) {
+      for (std::size_t t = 0; t < shadow_map.textures.size(); ++t) {
+        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &shadow_layers[t]);
+        r.textures.push_back(shadow_layers[t]);
+        glTextureStorage3D(shadow_layers[t], 1, t == 0 ? GL_R32F : GL_RGBA8, o.shadow_size, o.shadow_size,
+                           GLsizei(shadowed_lights.size()));
+        gl::label(GL_TEXTURE, shadow_layers[t], t == 0 ? "shadow layers depth" : "shadow layers colour");
+      }
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, particle_regions_binding,
+                     r.buffer(particle_regions(s, atlas), "particle regions"));
+    std::size_t count = 0;
+    for (const particle_system& ps : s.particles) count += std::size_t(std::max(ps.count, 0));
+    particle_quads_buffer = r.buffer(std::vector<particle_vertex>(count * 6), "particle quads");
+    glCreateVertexArrays(1, &particle_vao);
+    r.vertex_arrays.push_back(particle_vao);
+    gl::label(GL_VERTEX_ARRAY, particle_vao, "particles");
+    glVertexArrayVertexBuffer(particle_vao, 0, particle_quads_buffer, 0, sizeof(particle_vertex));
+    for (GLuint a = 0; a < 3; ++a) {
+      glEnableVertexArrayAttrib(particle_vao, a);
+      glVertexArrayAttribBinding(particle_vao, a, 0);
+    }
+    glVertexArrayAttribFormat(particle_vao, 0, 3, GL_FLOAT, GL_FALSE, GLuint(offsetof(particle_vertex, position)));
+    glVertexArrayAttribIFormat(particle_vao, 1, 1, GL_UNSIGNED_INT, GLuint(offsetof(particle_vertex, system)));
+    glVertexArrayAttribFormat(particle_vao, 2, 4, GL_FLOAT, GL_FALSE, GLuint(offsetof(particle_vertex, corner)));
+    upload_quads(s.view);
+  }
+  // One bake dispatch a region, with the lights in `lights`, reading the camera's frame and the shadow map.
+  auto bake = [&](GLuint prog, GLuint lights) {
+    glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+    for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
+      glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+    glUseProgram(prog);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, volume_lights_binding, lights);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, volume_texels_binding, volume_texels);
+    for (std::size_t k = 0; k < atlas.regions.size(); ++k) {
+      const glm::ivec4 d = atlas.regions[k].dims;
+      glBindBufferBase(GL_UNIFORM_BUFFER, volume_region_binding, region_blocks[k]);
+      glDispatchCompute(GLuint(d.x + 3) / 4, GLuint(d.y + 3) / 4, GLuint(d.z + 3) / 4);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+
   auto bind_layers = [&] {
     glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
     glBindImageTexture(kbuffer_heads_binding, heads, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
@@ -244,6 +342,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       frame_block moved = camera_frame(view, s.ambient, o);
       moved.params.z = camera.params.z;
       glNamedBufferSubData(frame_ubo, 0, sizeof moved, &moved);
+      if (particles) upload_quads(view);
     }
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
@@ -295,6 +394,13 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     // Lights, each shadowed spot light right after its own shadow pass (one shadow map serves them all),
     // into each layer's light buffer, or (forward) over all geometry again into the lit colour.
     for (const gl::targets& lb : light_buffers) glClearNamedFramebufferfv(lb.framebuffer, GL_COLOR, 0, clear_zero);
+    if (baking)
+      timed("bake", [&] {
+        gl::debug_group g("bake pass");
+        glClearNamedBufferData(volume_texels, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
+        if (bake_prog) bake(bake_prog, unshadowed_buffer);
+      });
+    std::size_t shadow_layer = 0;
     for (std::size_t i = 0; i < s.lights.size(); ++i) {
       const light& l = s.lights[i];
       const shadow_mode lookup = plan.lookups[i];
@@ -321,6 +427,18 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         });
         // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
         if (mode == shadow_mode::transparent && shadow_picture.empty()) shadow_picture = gl::read_texels(shadow_map, 1);
+        if (baking)
+          timed("bake", [&] {
+            gl::debug_group g("bake pass, light " + std::to_string(i));
+            bake(bake_shadowed_prog, shadowed_buffers[shadow_layer]);
+          });
+        if (particle_reference)
+          timed("particles", [&] {
+            for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
+              glCopyImageSubData(shadow_map.textures[t], GL_TEXTURE_2D, 0, 0, 0, 0, shadow_layers[t], GL_TEXTURE_2D_ARRAY, 0,
+                                 0, 0, GLint(shadow_layer), o.shadow_size, o.shadow_size, 1);
+          });
+        ++shadow_layer;
       }
       if (forward)
         timed("light", [&] {
@@ -373,6 +491,16 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         });
     }
 
+    if (baking)
+      timed("bake", [&] {
+        gl::debug_group g("bake pass, into the atlas");
+        glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, volume_texels);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTextureSubImage3D(atlas_texture, 0, 0, 0, 0, atlas_size.x, atlas_size.y, atlas_size.z, GL_RGBA, GL_FLOAT, nullptr);
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+      });
+
     timed(forward ? "blend" : "compose", [&] {
       gl::debug_group g(forward ? "forward blend pass" : "compose pass");
       gl::bind(*final_target);
@@ -422,6 +550,25 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         gl::draw_fullscreen(fullscreen_vao);
       });
     }
+    if (particles)
+      timed("particles", [&] {
+        gl::debug_group g("particle pass");
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        gl::bind(*final_target);
+        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+        for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+        if (baking) glBindTextureUnit(GLuint(volume_atlas_binding), atlas_texture);
+        for (GLuint t = 0; t < 2; ++t)
+          if (shadow_layers[t]) glBindTextureUnit(GLuint(shadow_layers_binding) + t, shadow_layers[t]);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_BLEND);
+        // The particles write their colour premultiplied, and in alpha what the frame behind keeps.
+        glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+        glUseProgram(particle_prog);
+        glBindVertexArray(particle_vao);
+        glDrawArrays(GL_TRIANGLES, 0, GLsizei(particle_vertices));
+      });
     frames.push_back(current);
     if (hooks) hooks->after(final_target->framebuffer, current);
   }
@@ -449,6 +596,10 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     out.kbuffer_overflow = pool[0].y;
     pool.resize(std::size_t(std::min(pool[0].x, capacity)) + 1u);
     out.kbuffer_nodes.assign(pool.begin() + 1, pool.end());
+  }
+  if (baking) {
+    out.volume_texels.resize(atlas_texels);
+    glGetNamedBufferSubData(volume_texels, 0, GLsizeiptr(atlas_texels * sizeof(glm::vec4)), out.volume_texels.data());
   }
   const format final_format = final_target_desc(o.float_targets).fmt, light_format = light_targets(o.float_targets)[0].fmt;
   out.final_image = to_image(out.final_texels, final_format, w, h, view_as::rgb);

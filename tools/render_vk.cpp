@@ -2,8 +2,11 @@
 // starts with a full memory barrier: the passes read what the one before wrote.
 #include "render_vk.hpp"
 
+#include <cstddef>
 #include <cstring>
 #include <map>
+
+#include <dstrans/particles.hpp>
 
 #include "passes.hpp"
 
@@ -17,7 +20,8 @@ struct resources {
   std::vector<vk::buffer> buffers;
   std::vector<vk::pipeline> pipelines;
   std::vector<vk::targets> targets;
-  VkSampler sampler = VK_NULL_HANDLE;
+  std::vector<vk::image> images;
+  VkSampler sampler = VK_NULL_HANDLE, linear_sampler = VK_NULL_HANDLE;
   VkDescriptorPool pool = VK_NULL_HANDLE;
 
   explicit resources(vk::device& d) : dev(d) {}
@@ -25,7 +29,9 @@ struct resources {
     const VkDevice device = dev.ctx().device;
     if (pool) vkDestroyDescriptorPool(device, pool, dev.ctx().allocator);
     if (sampler) vkDestroySampler(device, sampler, dev.ctx().allocator);
+    if (linear_sampler) vkDestroySampler(device, linear_sampler, dev.ctx().allocator);
     for (auto& t : targets) dev.destroy(t);
+    for (auto& i : images) dev.destroy(i);
     for (auto& p : pipelines) dev.destroy(p);
     for (auto& b : buffers) dev.destroy(b);
   }
@@ -43,6 +49,7 @@ struct resources {
 struct bindings {
   std::map<int, VkBuffer> buffers;
   std::map<int, VkImageView> images;
+  std::map<int, VkSampler> samplers;  // for sampled images not read with resources::sampler (nearest)
 };
 
 // A descriptor set for `p` whose shaders are `stages`, filled from `b` by what the shaders declare.
@@ -73,7 +80,9 @@ result<VkDescriptorSet> make_set(resources& r, const vk::pipeline& p, const std:
       const auto it = b.images.find(binding);
       if (it == b.images.end()) return failure{"nothing bound to image binding " + std::to_string(binding)};
       const bool sampled = type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-      image_infos.push_back({sampled ? r.sampler : VK_NULL_HANDLE, it->second, VK_IMAGE_LAYOUT_GENERAL});
+      const auto own = b.samplers.find(binding);
+      image_infos.push_back({!sampled ? VK_NULL_HANDLE : own != b.samplers.end() ? own->second : r.sampler, it->second,
+                             VK_IMAGE_LAYOUT_GENERAL});
       w.pImageInfo = &image_infos.back();
     } else {
       const auto it = b.buffers.find(binding);
@@ -104,6 +113,21 @@ void barrier(VkCommandBuffer cmd) {
   m.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &m, 0,
                        nullptr, 0, nullptr);
+}
+
+// Moves all of `img`'s layers from layout `from` to `to`, after everything before and before everything
+// after: copies want TRANSFER_*_OPTIMAL, and dstrans keeps images in GENERAL between passes.
+void relayout(VkCommandBuffer cmd, VkImage img, VkImageLayout from, VkImageLayout to) {
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = img;
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
+                       nullptr, 1, &b);
 }
 
 struct compiled {
@@ -317,6 +341,65 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     ~storage_image_guard() { dev.destroy(image); }
   } heads_guard{dev, heads};
 
+  // Light volumes (S2): particle systems over the deferred frame, lit from the atlas baked each frame (all
+  // unshadowed lights in one dispatch a region, each shadowed spot light in its own right after its shadow
+  // pass), or by the forward reference, which needs every shadow map at once: each is copied into a layer.
+  const particle_plan smoke = particle_plan_of(s, plan, o);
+  const bool particles = smoke.on, particle_reference = smoke.reference, baking = smoke.baking;
+  const volume_atlas& atlas = smoke.atlas;
+  const std::vector<std::size_t>& shadowed_lights = smoke.shadowed_lights;
+  const std::vector<volume_light>& unshadowed_lights = smoke.unshadowed_lights;
+  const vk::shader* bake_shaders[2] = {};
+  vk::pipeline bake_pipes[2]{}, particle_pipe;
+  result<compiled> particle_shaders = failure{"unused"};
+  vk::image atlas_image, shadow_layers[2];
+  const glm::ivec3 atlas_size = glm::max(atlas.size, glm::ivec3(1));  // a forced effect with no system
+  const std::size_t atlas_texels = std::size_t(atlas_size.x) * std::size_t(atlas_size.y) * std::size_t(atlas_size.z);
+  if (particles) {
+    for (const int shadowed : {0, 1}) {
+      if (!baking || (shadowed ? shadowed_lights.empty() : unshadowed_lights.empty())) continue;
+      const std::string name = shadowed ? "bake pass shadowed" : "bake pass";
+      auto src = bake_pass(shader_dir, shadowed ? mode : shadow_mode::off, o);
+      if (!src) return failure{src.error()};
+      auto sh = dev.get_shader(*src, spirv::stage::compute, name);
+      if (!sh) return failure{sh.error()};
+      auto p = dev.make_compute_pipeline(**sh, name);
+      if (!p) return failure{p.error()};
+      r.pipelines.push_back(*p);
+      bake_shaders[shadowed] = *sh;
+      bake_pipes[shadowed] = *p;
+    }
+    particle_shaders = compile(dev, particle_pass(shader_dir, mode, o), "particle pass");
+    if (!particle_shaders) return failure{particle_shaders.error()};
+    vk::pipeline_state st;
+    st.transmit = true;  // colour premultiplied, and in alpha what the frame behind keeps
+    st.bindings = {{0, sizeof(particle_vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+    st.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, std::uint32_t(offsetof(particle_vertex, position))},
+                     {1, 0, VK_FORMAT_R32_UINT, std::uint32_t(offsetof(particle_vertex, system))},
+                     {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, std::uint32_t(offsetof(particle_vertex, corner))}};
+    auto pp = dev.make_graphics_pipeline(*particle_shaders->vertex, *particle_shaders->fragment, final_target->formats,
+                                         "particle pass", st);
+    if (!pp) return failure{pp.error()};
+    particle_pipe = *pp;
+    r.pipelines.push_back(particle_pipe);
+    if (baking) {
+      auto img = dev.make_sampled_image(VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_VIEW_TYPE_3D, atlas_size.x, atlas_size.y,
+                                        atlas_size.z, "volume atlas");
+      if (!img) return failure{img.error()};
+      atlas_image = *img;
+      r.images.push_back(atlas_image);
+    } else if (any_shadows && !shadowed_lights.empty()) {
+      for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) {
+        auto img = dev.make_sampled_image(VkFormat(info(shadow_map.formats[t]).vk_format), VK_IMAGE_VIEW_TYPE_2D_ARRAY,
+                                          o.shadow_size, o.shadow_size, int(shadowed_lights.size()),
+                                          t ? "shadow layers colour" : "shadow layers depth");
+        if (!img) return failure{img.error()};
+        shadow_layers[t] = *img;
+        r.images.push_back(shadow_layers[t]);
+      }
+    }
+  }
+
   // Buffers.
   frame_block camera = camera_frame(s, o);
   camera.params.z = float(hair_shadow_light(plan));
@@ -337,8 +420,40 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       r.buffer(std::vector<frame_block>{camera}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "camera frame"),
       r.buffer(material_blocks(s), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials"),
       r.buffer(light_blocks(s, o), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights")};
+  // The light volumes' buffers: the atlas's texels (the bake adds into them), each region's bake block,
+  // the lights per dispatch; the particles' regions and quads.
+  std::size_t particle_count = 0;
+  for (const particle_system& ps : s.particles) particle_count += std::size_t(std::max(ps.count, 0));
+  const std::vector<particle_vertex> quads = particles ? particle_quads(s, s.view) : std::vector<particle_vertex>{};
+  std::vector<VkBuffer> region_blocks, shadowed_buffers;
+  const std::size_t volume_first = made.size();
+  const std::size_t texels_index = r.buffers.size();  // its mapped memory is cleared and read back
+  if (particles) {
+    made.push_back(r.buffer(std::vector<glm::vec4>(baking ? atlas_texels : 1),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "volume texels"));
+    made.push_back(r.buffer(unshadowed_lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "volume lights"));
+    made.push_back(r.buffer(particle_regions(s, atlas), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "particle regions"));
+    made.push_back(r.buffer(quads, vertex_use, "particle quads"));
+    for (std::size_t k = 0; k < atlas.regions.size(); ++k)
+      made.push_back(r.buffer(std::vector<volume_bake_block>{bake_block(atlas, k)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                              "volume region " + std::to_string(k)));
+    for (std::size_t i : shadowed_lights)
+      made.push_back(r.buffer(std::vector<volume_light>{volume_light_of(s.lights[i], i)}, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              "volume light " + std::to_string(i)));
+  }
   for (const auto& b : made)
     if (!b) return failure{b.error()};
+  VkBuffer volume_texels = VK_NULL_HANDLE, unshadowed_buffer = VK_NULL_HANDLE, regions_buffer = VK_NULL_HANDLE,
+           quads_buffer = VK_NULL_HANDLE;
+  if (particles) {
+    volume_texels = *made[volume_first];
+    unshadowed_buffer = *made[volume_first + 1];
+    regions_buffer = *made[volume_first + 2];
+    quads_buffer = *made[volume_first + 3];
+    for (std::size_t k = 0; k < atlas.regions.size(); ++k) region_blocks.push_back(*made[volume_first + 4 + k]);
+    for (std::size_t j = 0; j < shadowed_lights.size(); ++j)
+      shadowed_buffers.push_back(*made[volume_first + 4 + atlas.regions.size() + j]);
+  }
   const VkBuffer positions = *made[0], normals = *made[1], materials = *made[2], indices = *made[3],
                  light_index = *made[4], sphere_vertices = *made[5], sphere_indices = *made[6],
                  cone_vertices = *made[7], cone_indices = *made[8], frame_ubo = *made[9], material_ssbo = *made[10],
@@ -347,9 +462,11 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   vkCreateSampler(ctx.device, &sci, ctx.allocator, &r.sampler);
-  const std::uint32_t sets = std::uint32_t(6 + 2 * s.lights.size());
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sets},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * sets},
+  sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;  // the volume atlas is read trilinearly
+  vkCreateSampler(ctx.device, &sci, ctx.allocator, &r.linear_sampler);
+  const std::uint32_t sets = std::uint32_t(7 + 2 * s.lights.size() + atlas.regions.size() * (1 + shadowed_lights.size()));
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * sets},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * sets},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8 * sets},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}};
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -384,6 +501,39 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   if (peeling) {
     for (int t = 0; t < 4; ++t) common.images[gbuffer2_binding + t] = gbuffers[1].colors[std::size_t(t)].view;
     common.images[light2_binding] = light_buffers[1].colors[0].view;
+  }
+
+  // One bake dispatch a region with the lights in `lights`, reading the camera's frame and the shadow map.
+  auto bake = [&](int shadowed, VkBuffer lights) -> result<double> {
+    std::vector<VkDescriptorSet> region_sets;
+    for (std::size_t k = 0; k < atlas.regions.size(); ++k) {
+      bindings b = base;
+      b.buffers[volume_lights_binding] = lights;
+      b.buffers[volume_texels_binding] = volume_texels;
+      b.buffers[volume_region_binding] = region_blocks[k];
+      auto set = make_set(r, bake_pipes[shadowed], {bake_shaders[shadowed]}, b);
+      if (!set) return failure{set.error()};
+      region_sets.push_back(*set);
+    }
+    return dev.submit([&](VkCommandBuffer cmd) {
+      barrier(cmd);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bake_pipes[shadowed].handle);
+      for (std::size_t k = 0; k < atlas.regions.size(); ++k) {
+        const glm::ivec4 d = atlas.regions[k].dims;
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bake_pipes[shadowed].layout, 0, 1, &region_sets[k], 0, nullptr);
+        vkCmdDispatch(cmd, std::uint32_t(d.x + 3) / 4, std::uint32_t(d.y + 3) / 4, std::uint32_t(d.z + 3) / 4);
+      }
+    });
+  };
+  bindings particle_set = common;
+  if (particles) {
+    particle_set.buffers[particle_regions_binding] = regions_buffer;
+    if (baking) {
+      particle_set.images[volume_atlas_binding] = atlas_image.view;
+      particle_set.samplers[volume_atlas_binding] = r.linear_sampler;
+    }
+    for (int t = 0; t < 2; ++t)
+      if (shadow_layers[t].view) particle_set.images[shadow_layers_binding + t] = shadow_layers[t].view;
   }
 
   frame out;
@@ -452,6 +602,15 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         dev.end_rendering(cmd);
       }
     });
+    if (baking) {
+      std::memset(r.buffers[texels_index].mapped, 0, atlas_texels * sizeof(glm::vec4));  // the last submission has completed
+      if (bake_pipes[0].handle) {
+        auto ms = bake(0, unshadowed_buffer);
+        if (!ms) return failure{ms.error()};
+        current["bake"] += *ms;
+      }
+    }
+    std::size_t shadow_layer = 0;
     for (std::size_t i = 0; i < s.lights.size(); ++i) {
       const light& l = s.lights[i];
       const shadow_mode lookup = plan.lookups[i];
@@ -475,6 +634,28 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
           if (!texels) return failure{texels.error()};
           shadow_picture = *texels;
         }
+        if (baking) {
+          auto ms = bake(1, shadowed_buffers[shadow_layer]);
+          if (!ms) return failure{ms.error()};
+          current["bake"] += *ms;
+        }
+        if (particle_reference)
+          timed("particles", [&](VkCommandBuffer cmd) {
+            barrier(cmd);
+            for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) {
+              const VkImage from = shadow_map.colors[t].handle, to = shadow_layers[t].handle;
+              relayout(cmd, from, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+              relayout(cmd, to, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+              VkImageCopy copy{};
+              copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+              copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, std::uint32_t(shadow_layer), 1};
+              copy.extent = {std::uint32_t(o.shadow_size), std::uint32_t(o.shadow_size), 1};
+              vkCmdCopyImage(cmd, from, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+              relayout(cmd, from, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+              relayout(cmd, to, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+            }
+          });
+        ++shadow_layer;
       }
       if (forward) {
         const vk::pipeline& p = forward_light_pipes[int(lookup)];
@@ -522,6 +703,16 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       }
     }
 
+    if (baking)
+      timed("bake", [&](VkCommandBuffer cmd) {
+        relayout(cmd, atlas_image.handle, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {std::uint32_t(atlas_size.x), std::uint32_t(atlas_size.y), std::uint32_t(atlas_size.z)};
+        vkCmdCopyBufferToImage(cmd, volume_texels, atlas_image.handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        relayout(cmd, atlas_image.handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+      });
+
     auto compose_set = make_set(r, *compose_pipe, {compose_shaders->vertex, compose_shaders->fragment}, common);
     if (!compose_set) return failure{compose_set.error()};
     timed(forward ? "blend" : "compose", [&](VkCommandBuffer cmd) {
@@ -562,9 +753,26 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         dev.end_rendering(cmd);
       });
     }
+    if (particles) {
+      auto set = make_set(r, particle_pipe, {particle_shaders->vertex, particle_shaders->fragment}, particle_set);
+      if (!set) return failure{set.error()};
+      timed("particles", [&](VkCommandBuffer cmd) {
+        barrier(cmd);
+        dev.begin_rendering(cmd, *final_target, {});
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, particle_pipe.handle);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, particle_pipe.layout, 0, 1, &*set, 0, nullptr);
+        vkCmdBindVertexBuffers(cmd, 0, 1, &quads_buffer, &zero);
+        if (!quads.empty()) vkCmdDraw(cmd, std::uint32_t(quads.size()), 1, 0, 0);
+        dev.end_rendering(cmd);
+      });
+    }
     frames.push_back(current);
   }
   summarize(frames, out);
+  if (baking) {
+    const auto* t = static_cast<const glm::vec4*>(r.buffers[texels_index].mapped);
+    out.volume_texels.assign(t, t + atlas_texels);
+  }
 
   const int w = o.width, h = o.height;
   auto picture = [&](const vk::targets& t, int index, format f, int pw, int ph, view_as how) -> result<image> {

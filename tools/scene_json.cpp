@@ -176,6 +176,23 @@ light read_light(reader& r) {
   return l;
 }
 
+particle_system read_particles(reader& r, const std::map<std::string, std::uint32_t>& materials) {
+  particle_system ps;
+  const std::string name = r.text("material");
+  const auto it = materials.find(name);
+  if (it == materials.end()) throw bad_field{r.field("material") + ": unknown material '" + name + "'"};
+  ps.material = it->second;
+  const float tiny = 1e-4f;
+  ps.base = r.vec<3>("base", -big, big);
+  ps.radius = r.number("radius", ps.radius, tiny, big);
+  ps.height = r.number("height", ps.height, 0.0f, big);
+  ps.size = r.number("size", ps.size, tiny, big);
+  ps.count = int(r.number("count", float(ps.count), 0.0f, 1000000.0f));
+  ps.seed = std::uint32_t(r.number("seed", 1.0f, 0.0f, 1e9f));
+  r.finish();
+  return ps;
+}
+
 }  // namespace
 
 result<scene> parse_scene(const std::string& text, const std::string& name) {
@@ -214,6 +231,14 @@ result<scene> parse_scene(const std::string& text, const std::string& name) {
       for (std::size_t i = 0; i < lights.size(); ++i) {
         reader l(lights[i], "lights[" + std::to_string(i) + "]");
         s.lights.push_back(read_light(l));
+      }
+    }
+    if (top.has("particles")) {
+      const json& systems = root["particles"];
+      if (!systems.is_array()) throw bad_field{"particles: expected an array"};
+      for (std::size_t i = 0; i < systems.size(); ++i) {
+        reader p(systems[i], "particles[" + std::to_string(i) + "]");
+        s.particles.push_back(read_particles(p, materials));
       }
     }
     top.finish();

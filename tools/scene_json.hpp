@@ -13,10 +13,13 @@
 //                 shape parameters...}, ...],
 //    "lights": [{"type": "directional"|"point"|"spot", "colour": [r,g,b], "intensity": i,
 //                "position": [x,y,z], "direction": [x,y,z], "range": r, "inner_angle": deg,
-//                "outer_angle": deg, "shadows": bool}, ...]}
+//                "outer_angle": deg, "shadows": bool}, ...],
+//    "particles": [{"material": "name", "base": [x,y,z], "radius": r, "height": h, "size": s,
+//                   "count": n, "seed": k}, ...]}
 // Shape parameters: box and room "size": [x,y,z]; pane "size": [w,h]; sphere "radius"; cylinder and
 // bottle "radius", "height"; sphere, cylinder and bottle "segments" (default 32); hair "radius" (of the
 // scalp), "strands", "length", "width" (default 0.01), "segments" (default 8), "seed" (default 1).
+// Particle systems (dstrans::particle_system): radius 0.5, height 2, size 0.25, count 100, seed 1 unless given.
 #pragma once
 
 #include <string>

@@ -135,14 +135,16 @@ result<std::uint32_t> device::memory_type(std::uint32_t bits, VkMemoryPropertyFl
 }
 
 result<image> device::make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
-                                 const std::string& label) {
+                                 const std::string& label, VkImageViewType view_type, int depth_or_layers) {
   image img;
   img.format = fmt;
+  const bool volume = view_type == VK_IMAGE_VIEW_TYPE_3D, layered = view_type == VK_IMAGE_VIEW_TYPE_2D_ARRAY;
   VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ci.imageType = VK_IMAGE_TYPE_2D;
+  ci.imageType = volume ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
   ci.format = fmt;
-  ci.extent = {std::uint32_t(w), std::uint32_t(h), 1};
-  ci.mipLevels = ci.arrayLayers = 1;
+  ci.extent = {std::uint32_t(w), std::uint32_t(h), volume ? std::uint32_t(depth_or_layers) : 1u};
+  ci.mipLevels = 1;
+  ci.arrayLayers = layered ? std::uint32_t(depth_or_layers) : 1u;
   ci.samples = VK_SAMPLE_COUNT_1_BIT;
   ci.tiling = VK_IMAGE_TILING_OPTIMAL;
   ci.usage = usage;
@@ -161,9 +163,9 @@ result<image> device::make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageA
   vkBindImageMemory(ctx_.device, img.handle, img.memory, 0);
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vi.image = img.handle;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vi.viewType = view_type;
   vi.format = fmt;
-  vi.subresourceRange = {aspect, 0, 1, 0, 1};
+  vi.subresourceRange = {aspect, 0, 1, 0, ci.arrayLayers};
   vkCreateImageView(ctx_.device, &vi, ctx_.allocator, &img.view);
   name(VK_OBJECT_TYPE_IMAGE, std::uint64_t(img.handle), label);
   name(VK_OBJECT_TYPE_IMAGE_VIEW, std::uint64_t(img.view), label);
@@ -240,6 +242,28 @@ result<image> device::make_storage_image(VkFormat fmt, int width, int height, co
   submit([&](VkCommandBuffer cmd) {
     const VkImageMemoryBarrier b = image_barrier(img->handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
                                                  VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &b);
+  });
+  return img;
+}
+
+result<image> device::make_sampled_image(VkFormat fmt, VkImageViewType view_type, int width, int height,
+                                         int depth_or_layers, const std::string& label) {
+  VkFormatFeatureFlags wanted = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+  if (view_type == VK_IMAGE_VIEW_TYPE_3D) wanted |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  VkFormatProperties props;
+  vkGetPhysicalDeviceFormatProperties(ctx_.physical_device, fmt, &props);
+  if ((props.optimalTilingFeatures & wanted) != wanted)
+    return failure{label + ": the device cannot sample (and, for a 3D image, filter) format " + std::to_string(int(fmt))};
+  if (width < 1 || height < 1 || depth_or_layers < 1) return failure{label + ": an image needs at least one texel"};
+  auto img = make_image(fmt, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                        VK_IMAGE_ASPECT_COLOR_BIT, width, height, label, view_type, depth_or_layers);
+  if (!img) return img;
+  submit([&](VkCommandBuffer cmd) {
+    VkImageMemoryBarrier b = image_barrier(img->handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+                                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    b.subresourceRange.layerCount = VK_REMAINING_ARRAY_LAYERS;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
                          nullptr, 1, &b);
   });

@@ -3,7 +3,7 @@
 //
 // Implements, on the engine's instance, device and queue (dstrans::vk::context):
 //   - images for a layout's targets (make_targets), read back as bytes (read_texels); storage images
-//     (make_storage_image) and mapped buffers (make_buffer);
+//     (make_storage_image), sampled 3D and array images (make_sampled_image) and mapped buffers (make_buffer);
 //   - GLSL compiled to SPIR-V at run time by glslang, cached by content hash (get_shader);
 //   - graphics and compute pipelines whose descriptor layouts come from SPIRV-Cross reflection, checked
 //     against the layout the pipeline draws into before it is built (make_graphics_pipeline, make_compute_pipeline);
@@ -115,6 +115,10 @@ class device {
   void destroy(buffer& b);
   // A storage image (read and written by shaders, cleared and copied by transfers), in GENERAL layout.
   result<image> make_storage_image(VkFormat fmt, int width, int height, const std::string& label);
+  // An image shaders sample and transfers fill (a 3D texture: VK_IMAGE_VIEW_TYPE_3D, filtered linearly, or
+  // a 2D array: VK_IMAGE_VIEW_TYPE_2D_ARRAY), in GENERAL layout; a failure if the device cannot.
+  result<image> make_sampled_image(VkFormat fmt, VkImageViewType view_type, int width, int height, int depth_or_layers,
+                                   const std::string& label);
   // The 32-bit texels of a storage image such as an R32_UINT one, row by row from the top.
   result<std::vector<std::uint32_t>> read_words(const image& img, int width, int height);
   void destroy(image& i);
@@ -151,7 +155,8 @@ class device {
   result<std::uint32_t> memory_type(std::uint32_t bits, VkMemoryPropertyFlags flags) const;
   result<std::vector<std::uint8_t>> read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height);
   result<image> make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
-                           const std::string& label);
+                           const std::string& label, VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_2D,
+                           int depth_or_layers = 1);
   // A pipeline with its layouts made from what `stages` declare, and no VkPipeline yet.
   result<pipeline> pipeline_layout(const std::vector<const shader*>& stages, const std::string& label);
 

@@ -1,0 +1,70 @@
+// The particle pass (S2): a particle is a soft disc lit as the sphere it stands for (the normal from its
+// corner, facing the camera at the centre), from its system's light volume or (DST_PARTICLES_FORWARD, the
+// reference) by every light per fragment with Lambert's law, and laid over the frame premultiplied, with in
+// alpha the share of the frame that shows through (the blend keeps colour = source + frame * alpha).
+layout(location = 0) in vec3 world;
+layout(location = 1) flat in uint particle_system;
+layout(location = 2) in vec3 particle_corner_alpha;
+layout(location = 0) out vec4 dst_particle_colour;
+
+struct dst_particle_region {
+  vec4 origin_material;  // the region's first cell corner; w: the system's material
+  vec4 scale_slab;       // a cell's size; w: the atlas's slab height
+  vec4 offset;           // the region's first texel
+  vec4 dims;             // its cells per axis
+};
+layout(std430, binding = 28) readonly buffer dst_particle_regions { dst_particle_region regions[]; };
+#ifndef DST_PARTICLES_FORWARD
+layout(binding = 29) uniform sampler3D dst_volume_atlas;
+#endif
+
+// World units over which a particle fades out as it nears the surface behind it (soft particles): without
+// it, quads cut the floor and walls along hard lines.
+const float dst_particle_fade = 0.3f;
+
+#ifdef DST_PARTICLES_FORWARD
+vec3 dst_particle_forward(vec3 p, vec3 n) {
+  vec3 sum = vec3(0.0f);
+  int layer = 0;
+  for (int i = 0; i < lights.length(); ++i) {
+    dst_light_data l = lights[i];
+    vec4 reach = dst_light_reach(int(l.direction_kind.w + 0.5f), l.position_range.xyz, l.direction_kind.xyz,
+                                 l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, p);
+    vec3 light = l.colour_cos_outer.xyz * reach.w;
+#ifdef DST_SHADOWS
+    if (l.cos_inner.y > 0.5f) {
+      dst_shadow_layer = layer++;
+      light = dst_shadowed(light, p, l);
+    }
+#endif
+    sum += light * dst_facing(n, reach.xyz);
+  }
+  return sum;
+}
+#endif
+
+void main() {
+  vec2 corner = particle_corner_alpha.xy;
+  float r2 = dot(corner, corner);
+  if (r2 >= 1.0f) discard;
+  ivec2 pixel = dst_pixel();
+  vec4 behind_h = frame.inv_view_proj * vec4(dst_pixel_ndc(pixel, frame.size.xy), dst_gbuffer_fetch(3, pixel).x, 1.0f);
+  vec3 eye = frame.camera_position.xyz;
+  float gap = distance(behind_h.xyz / behind_h.w, eye) - distance(world, eye);
+  if (!(gap > 0.0f)) discard;
+  dst_particle_region region = regions[particle_system];
+  dst_material_data m = materials[uint(region.origin_material.w + 0.5f)];
+  vec3 right = vec3(frame.view[0][0], frame.view[1][0], frame.view[2][0]);
+  vec3 up = vec3(frame.view[0][1], frame.view[1][1], frame.view[2][1]);
+  vec3 toward = vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2]);
+  vec3 n = normalize(corner.x * right + corner.y * up + sqrt(1.0f - r2) * toward);
+#ifdef DST_PARTICLES_FORWARD
+  vec3 light = dst_particle_forward(world, n);
+#else
+  vec3 light = dst_volume_light(dst_volume_atlas, region.scale_slab.w, world, n, region.origin_material.xyz,
+                                region.scale_slab.xyz, region.offset.xyz, region.dims.xyz);
+#endif
+  float soft = (1.0f - r2) * (1.0f - r2) * min(gap / dst_particle_fade, 1.0f);
+  float a = clamp(m.diffuse_alpha.w * particle_corner_alpha.z * soft, 0.0f, 1.0f);
+  dst_particle_colour = vec4(m.diffuse_alpha.xyz * (frame.ambient.xyz + light) * a, 1.0f - a);
+}
