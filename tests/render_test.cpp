@@ -1004,3 +1004,218 @@ TEST_CASE("smoke lit from light volumes stays near the per-fragment reference on
       CHECK(differ < g.rgba.size() / 4 / 100);
     }
 }
+
+// Issue 11: the post-processing chain as the renderers run it.
+scene with_chain(scene s, std::vector<post_effect> chain) {
+  s.post = std::move(chain);
+  return s;
+}
+
+const render::image& buffer_of(const frame& f, const std::string& name) {
+  for (const auto& [n, img] : f.buffers)
+    if (n == name) return img;
+  FAIL("no buffer " << name);
+  return f.final_image;
+}
+
+std::vector<glm::vec4> float_texels(const std::vector<texel>& t) {
+  std::vector<glm::vec4> out;
+  for (const texel& x : t) out.push_back(decode(format::rgba32f, x));
+  return out;
+}
+
+TEST_CASE("blurring a constant image leaves it constant, on GL and Vulkan", "[post][render]") {
+  // A wall filling the view, lit by the ambient term alone: one colour everywhere.
+  scene s;
+  s.materials = {material{{0.6f, 0.4f, 0.2f}, 1.0f}};
+  s.objects = {{shape_box({40.0f, 40.0f, 0.1f}), glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -3.0f}), 0}};
+  s.view.position = {0.0f, 0.0f, 0.0f};
+  s.view.target = {0.0f, 0.0f, -1.0f};
+  s.ambient = glm::vec3(0.5f);
+  post_effect blur{post_kind::blur};
+  blur.radius = 5;
+  blur.sigma = 2.5f;
+  options o = small(64, 36);
+  o.float_targets = true;
+  for (backend b : backends) {
+    auto f = draw(b, with_chain(s, {blur}), o);
+    if (!f) continue;
+    const std::vector<glm::vec4> out = float_texels(f->final_texels);
+    float worst = 0.0f;
+    for (const glm::vec4& t : out) worst = std::max(worst, glm::length(glm::vec3(t) - glm::vec3(0.3f, 0.2f, 0.1f)));
+    INFO(name(b));
+    CHECK(worst < 1e-6f);
+  }
+}
+
+TEST_CASE("blurring a single bright pixel gives the kernel, its weights summing to 1 (GL)", "[post][gl]") {
+  auto ctx = gl::headless_context::create();
+  if (!ctx) {
+    WARN("skipped GL: " << ctx.error());
+    return;
+  }
+  const int n = 15, centre = 7;
+  post_effect e{post_kind::blur};
+  e.radius = 4;
+  e.sigma = 1.5f;
+  const post_plan plan = plan_post({e}, false);
+  REQUIRE(plan.passes.size() == 2);
+  const target_desc desc{format::rgba32f, {"r", "g", "b", "a"}};
+  std::map<std::string, gl::targets> images;
+  for (const std::string& t : {std::string("frame"), plan.targets[0], plan.targets[1]}) {
+    auto made = gl::make_targets({desc}, n, n, t, false);
+    REQUIRE(made);
+    images[t] = *made;
+  }
+  std::vector<glm::vec4> input(std::size_t(n * n), glm::vec4(0.0f));
+  input[std::size_t(centre * n + centre)] = glm::vec4(1.0f);
+  glTextureSubImage2D(images["frame"].textures[0], 0, 0, 0, n, n, GL_RGBA, GL_FLOAT, input.data());
+  render::frame_block fb{};
+  fb.size = glm::ivec4(n, n, 0, 0);
+  GLuint blocks[3], vao;
+  glCreateBuffers(3, blocks);
+  glNamedBufferStorage(blocks[0], sizeof fb, &fb, 0);
+  glCreateVertexArrays(1, &vao);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const post_pass& pass = plan.passes[k];
+    auto src = render::post_pass_sources(DSTRANS_SHADER_DIR, pass);
+    REQUIRE(src);
+    auto prog = gl::make_program(src->vertex, src->fragment, pass.name);
+    INFO(prog.error());
+    REQUIRE(prog);
+    glNamedBufferStorage(blocks[1 + k], sizeof pass.params, pass.params, 0);
+    gl::bind(images[pass.output]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, render::frame_binding, blocks[0]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, render::post_params_binding, blocks[1 + k]);
+    glBindTextureUnit(render::post_input_binding, images[pass.inputs[0]].textures[0]);
+    glUseProgram(*prog);
+    gl::draw_fullscreen(vao);
+    glDeleteProgram(*prog);
+  }
+  const std::vector<glm::vec4> out = float_texels(gl::read_texels(images[plan.output], 0));
+  const std::vector<float> w = gaussian_weights(e.radius, e.sigma);
+  double sum = 0.0;
+  float worst = 0.0f;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int dx = x - centre, dy = y - centre;
+      const float want = std::abs(dx) <= e.radius && std::abs(dy) <= e.radius
+                             ? w[std::size_t(dx + e.radius)] * w[std::size_t(dy + e.radius)] : 0.0f;
+      worst = std::max(worst, std::abs(out[std::size_t(y * n + x)].x - want));
+      sum += out[std::size_t(y * n + x)].x;
+    }
+  CHECK(worst < 1e-6f);
+  CHECK(sum == Approx(1.0).epsilon(1e-5));
+  glDeleteBuffers(3, blocks);
+  glDeleteVertexArrays(1, &vao);
+  for (auto& [name, t] : images) gl::destroy(t);
+  CHECK((*ctx)->debug_messages().empty());
+}
+
+TEST_CASE("bloom with its threshold above the brightest pixel changes nothing, on GL and Vulkan", "[post][render]") {
+  post_effect bloom{post_kind::bloom};
+  bloom.threshold = 10.0f;
+  for (backend b : backends) {
+    auto f = draw(b, with_chain(testing::effect_scene(testing::rung::seen), {bloom}), small(160, 90));
+    if (!f) continue;
+    INFO(name(b));
+    CHECK(rmse(f->final_image, buffer_of(*f, "composed")) == 0.0);
+    CHECK(rmse(buffer_of(*f, "post_bloom"), f->final_image) == 0.0);
+  }
+}
+
+TEST_CASE("anti-aliasing leaves flat regions untouched and changes edges, on GL and Vulkan", "[post][render]") {
+  const scene s = with_chain(testing::effect_scene(testing::rung::seen), {post_effect{post_kind::antialias}});
+  const options o = small(160, 90);
+  const render::frame_block fb = render::camera_frame(s, o);
+  for (backend b : backends) {
+    auto f = draw(b, s, o);
+    if (!f) continue;
+    const render::image& before = buffer_of(*f, "composed");
+    const int w = o.width, h = o.height;
+    // The distance to and normal of what each pixel's G-buffer holds.
+    std::vector<float> dist(std::size_t(w * h));
+    std::vector<glm::vec3> normal(std::size_t(w * h));
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const surface g = gbuffer_at(*f, std::size_t(y * w + x));
+        const glm::vec4 p = fb.inv_view_proj * glm::vec4(shader::dst_pixel_ndc({x, y}, {w, h}), g.depth, 1.0f);
+        dist[std::size_t(y * w + x)] = glm::length(glm::vec3(p) / p.w - s.view.position);
+        normal[std::size_t(y * w + x)] = g.normal;
+      }
+    // Flat: every neighbouring pair within two pixels turns by under 18 degrees and differs in distance by
+    // under 2% (the weights start at 41 degrees and 5%).
+    auto flat = [&](int x, int y) {
+      for (int j = std::max(y - 2, 0); j <= std::min(y + 2, h - 1); ++j)
+        for (int i = std::max(x - 2, 0); i <= std::min(x + 2, w - 1); ++i)
+          for (const glm::ivec2 d : {glm::ivec2(1, 0), glm::ivec2(0, 1)}) {
+            const int i2 = std::min(i + d.x, w - 1), j2 = std::min(j + d.y, h - 1);
+            const std::size_t a = std::size_t(j * w + i), c = std::size_t(j2 * w + i2);
+            if (glm::dot(normal[a], normal[c]) < 0.95f || std::abs(dist[a] - dist[c]) > 0.02f * std::min(dist[a], dist[c]))
+              return false;
+          }
+      return true;
+    };
+    std::size_t changed = 0, flat_changed = 0, flat_pixels = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = std::size_t(y * w + x) * 4;
+        const bool differs = std::memcmp(&before.rgba[i], &f->final_image.rgba[i], 3) != 0;
+        changed += differs;
+        if (flat(x, y)) {
+          ++flat_pixels;
+          flat_changed += differs;
+        }
+      }
+    INFO(name(b) << ": " << changed << " pixels changed, " << flat_pixels << " flat");
+    CHECK(flat_changed == 0u);
+    CHECK(flat_pixels > std::size_t(w * h) / 2);
+    CHECK(changed > 50u);
+  }
+}
+
+TEST_CASE("a chain of one effect gives what that effect gives inside a longer chain, on GL and Vulkan", "[post][render]") {
+  const scene s = testing::effect_scene(testing::rung::seen);
+  options o = small(160, 90);
+  o.float_targets = true;
+  post_effect bloom{post_kind::bloom};
+  bloom.threshold = 0.3f;
+  for (backend b : backends) {
+    auto one = draw(b, with_chain(s, {post_effect{post_kind::antialias}}), o);
+    auto three = draw(b, with_chain(s, {post_effect{post_kind::antialias}, bloom, post_effect{post_kind::sepia}}), o);
+    auto sepia = draw(b, with_chain(s, {post_effect{post_kind::sepia}}), o);
+    if (!one || !three || !sepia) continue;
+    INFO(name(b));
+    CHECK(rmse(one->final_image, buffer_of(*three, "post_aa")) == 0.0);
+    CHECK(rmse(one->final_image, three->final_image) > 1.0);
+    // Sepia alone is the CPU's dst_sepia of the composed frame.
+    const auto before = float_texels(sepia->final_texels);  // after the chain
+    std::vector<glm::vec4> composed;
+    {
+      auto plain = draw(b, s, o);
+      REQUIRE(plain);
+      composed = float_texels(plain->final_texels);
+    }
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < composed.size(); ++i)
+      worst = std::max(worst, glm::length(glm::vec3(before[i]) - shader::dst_sepia(glm::vec3(composed[i]))));
+    CHECK(worst < 1e-5f);
+  }
+}
+
+TEST_CASE("the chain is part of the plan: its passes and targets, and nothing without it", "[post][pipeline]") {
+  const scene plain = testing::effect_scene(testing::rung::seen);
+  const scene chained = with_chain(plain, {post_effect{post_kind::antialias}, post_effect{post_kind::bloom}});
+  const options o = small(160, 90);
+  const render::frame_plan a = render::plan_of(plain, o), c = render::plan_of(chained, o);
+  CHECK(a.post.passes.empty());
+  CHECK(c.pipeline.passes.size() == a.pipeline.passes.size() + 5);
+  REQUIRE(c.pipeline.pass("post aa"));
+  CHECK(c.pipeline.pass("post aa")->switches == std::vector<std::string>{"DST_AA_INTERLACE"});
+  CHECK(c.pipeline.target("post.aa"));
+  CHECK(c.pipeline.target("post.bloom.bright"));
+  CHECK(c.pipeline.bytes_per_pixel == a.pipeline.bytes_per_pixel + 5 * 4);
+  options fwd = o;
+  fwd.method = render::technique::forward;
+  CHECK(render::plan_of(chained, fwd).post.passes.empty());  // forward has no G-buffer to read
+}

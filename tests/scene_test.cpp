@@ -34,7 +34,8 @@ const char* const good =
                     "intensity": 2, "range": 8, "inner_angle": 20, "outer_angle": 30, "shadows": true},
                    {"type": "point", "position": [1, 2, 1], "range": 5},
                    {"type": "directional", "direction": [0.3, -1, 0.2], "intensity": 0.3}],
-        "particles": [{"material": "wall", "base": [1, 0, 0], "radius": 0.3, "height": 1.5, "size": 0.2, "count": 50, "seed": 4}]})";
+        "particles": [{"material": "wall", "base": [1, 0, 0], "radius": 0.3, "height": 1.5, "size": 0.2, "count": 50, "seed": 4}],
+        "post": [{"effect": "aa", "interlace": false}, {"effect": "bloom", "threshold": 0.9, "radius": 3}, {"effect": "sepia"}]})";
 
 // The scene `good` with `from` replaced by `to`.
 std::string edit(const std::string& from, const std::string& to) {
@@ -101,6 +102,16 @@ TEST_CASE("a good scene file loads", "[scene]") {
   CHECK(s->particles[0].base == glm::vec3(1, 0, 0));
   CHECK(s->particles[0].count == 50);
   CHECK(s->particles[0].seed == 4u);
+  REQUIRE(s->post.size() == 3);
+  CHECK(s->post[0].kind == post_kind::antialias);
+  CHECK_FALSE(s->post[0].interlace);
+  CHECK(s->post[1].threshold == 0.9f);
+  CHECK(s->post[1].radius == 3);
+  CHECK(s->post[2].kind == post_kind::sepia);
+  const auto chain = parse_post_chain(R"({"post": [{"effect": "dof", "focus": 3, "range": 1}]})", "chain.json");
+  REQUIRE(chain);
+  REQUIRE(chain->size() == 1);
+  CHECK((*chain)[0].focus == 3.0f);
 }
 
 TEST_CASE("bad scene files get an error that names the field", "[scene]") {
@@ -121,6 +132,9 @@ TEST_CASE("bad scene files get an error that names the field", "[scene]") {
       {R"({"camera": {"position": [0, 1, 5], "target": [0, 1, 0]}, "materials": {"a": {}}, "objects": []})",
        "good.json: objects: expected an array with at least one object"},
       {"[]", "good.json: expected an object"},
+      {edit("\"effect\": \"sepia\"", "\"effect\": \"vignette\""), "good.json: post[2].effect: unknown effect 'vignette'"},
+      {edit("\"threshold\": 0.9", "\"focus\": 0.9"), "good.json: post[1].focus: unknown key"},
+      {edit("\"radius\": 3}", "\"radius\": 65}"), "good.json: post[1].radius: 65 is outside"},
       {edit("\"material\": \"wall\", \"base\"", "\"material\": \"smoke\", \"base\""), "good.json: particles[0].material: unknown material 'smoke'"},
       {edit("\"count\": 50", "\"count\": -1"), "good.json: particles[0].count: -1 is outside"},
       {edit("\"seed\": 4", "\"seeds\": 4"), "good.json: particles[0].seeds: unknown key"},

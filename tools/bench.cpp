@@ -1,5 +1,6 @@
 // dstrans bench: the thesis's comparisons (Tables 4.1-4.7) measured on this machine, with the error of
 // each technique against deferred depth peeling (the thesis's reference), as results.json and report.md.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -236,6 +237,115 @@ result<json> volume_records(const scene& smoke, const render::options& base, boo
   return records;
 }
 
+// `img` at half its size, each pixel the mean of four (a 2x2 box filter, rounded).
+render::image halved(const render::image& img) {
+  render::image out{img.width / 2, img.height / 2, {}};
+  out.rgba.resize(std::size_t(out.width * out.height * 4));
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < 4; ++c) {
+        int sum = 0;
+        for (int j = 0; j < 2; ++j)
+          for (int i = 0; i < 2; ++i) sum += img.rgba[std::size_t(((2 * y + j) * img.width + 2 * x + i) * 4 + c)];
+        out.rgba[std::size_t((y * out.width + x) * 4 + c)] = std::uint8_t((sum + 2) / 4);
+      }
+  return out;
+}
+
+// S3's post-processing on glass_room (scene "glass_room_post" in the results): each effect's time in a
+// chain of all six, and the anti-aliasing's error at glass edges against depth peeling rendered at twice
+// the size and box-filtered down (an anti-aliased reference), without it, with S3's plain one and with
+// the one aware of the interlace predicate.
+template <class Draw>
+result<json> post_records(const scene& room, const render::options& base, const std::string& backend, Draw&& draw) {
+  json records = json::array();
+  using T = render::technique;
+  post_effect aa{post_kind::antialias}, bloom{post_kind::bloom}, dof{post_kind::depth_of_field}, blur{post_kind::blur};
+  bloom.threshold = 0.7f;
+  dof.focus = 6.0f;
+  dof.range = 6.0f;
+  blur.radius = 2;
+  blur.sigma = 1.0f;
+  scene s = room;
+  s.post = {aa, bloom, dof, blur, post_effect{post_kind::greyscale}, post_effect{post_kind::sepia}};
+  render::options o = base;
+  auto all = draw(s, o);
+  if (!all) return failure{all.error()};
+  for (const post_effect& e : s.post) {
+    const std::string name = post_name(e.kind);
+    records.push_back({{"technique", "post-" + name},
+                       {"scene", "glass_room_post"},
+                       {"backend", backend},
+                       {"settings", {{"width", o.width}, {"height", o.height}, {"frames", all->frames}, {"lights", s.lights.size()}}},
+                       {"frame_ms", all->frame_ms},
+                       {"frame_ms_spread", all->frame_ms_spread},
+                       {"pass_ms", all->pass_ms},
+                       {"post_ms", all->pass_ms.at("post " + name)},
+                       {"rmse", nullptr},
+                       {"rmse_transparent", nullptr}});
+  }
+  // The anti-aliased reference, and the glass edges: pixels whose 3x3 neighbourhood in the peeled first
+  // layer holds both glass and no glass.
+  s.post.clear();
+  render::options big = o;
+  big.method = T::peeling;
+  big.width *= 2;
+  big.height *= 2;
+  big.frames = 1;
+  auto fine = draw(s, big);
+  if (!fine) return failure{fine.error()};
+  const render::image reference = halved(fine->final_image);
+  o.method = T::peeling;
+  auto peeled = draw(s, o);
+  if (!peeled) return failure{peeled.error()};
+  const int w = o.width, h = o.height;
+  auto glass = [&](int x, int y) {
+    x = std::clamp(x, 0, w - 1);
+    y = std::clamp(y, 0, h - 1);
+    return decode(format::rgba8, peeled->gbuffer[0][std::size_t(y * w + x)]).w < 1.0f;
+  };
+  std::vector<bool> edges(std::size_t(w * h));
+  std::size_t edge_pixels = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      bool some = false, none = false;
+      for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) (glass(x + i, y + j) ? some : none) = true;
+      edges[std::size_t(y * w + x)] = some && none;
+      edge_pixels += some && none;
+    }
+  struct variant {
+    const char* name;
+    T method;
+    std::vector<post_effect> chain;
+  };
+  post_effect plain = aa;
+  plain.interlace = false;
+  for (const variant& v : {variant{"interlaced", T::interlaced, {}}, variant{"interlaced+aa", T::interlaced, {plain}},
+                           variant{"interlaced+aa-interlace", T::interlaced, {aa}}, variant{"peeling", T::peeling, {}},
+                           variant{"peeling+aa", T::peeling, {plain}}}) {
+    s.post = v.chain;
+    o.method = v.method;
+    auto f = draw(s, o);
+    if (!f) return failure{f.error()};
+    const error e = compare(f->final_image, reference, edges);
+    records.push_back({{"technique", std::string("aa-") + v.name},
+                       {"scene", "glass_room_post"},
+                       {"backend", backend},
+                       {"settings", {{"width", o.width}, {"height", o.height}, {"frames", f->frames}, {"lights", s.lights.size()},
+                                     {"edge_pixels", edge_pixels}}},
+                       {"frame_ms", f->frame_ms},
+                       {"frame_ms_spread", f->frame_ms_spread},
+                       {"pass_ms", f->pass_ms},
+                       {"post_ms", v.chain.empty() ? 0.0 : f->pass_ms.at("post aa")},
+                       {"reference", "depth peeling at twice the size, 2x2 box-filtered"},
+                       {"rmse", e.rmse},
+                       {"rmse_transparent", e.rmse_transparent},
+                       {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)}});
+  }
+  return records;
+}
+
 }  // namespace
 
 int bench(std::vector<std::string> args) {
@@ -414,7 +524,7 @@ int bench(std::vector<std::string> args) {
     for (const std::string& b : {backend, std::string(backend == "gl" ? "vk" : "gl")}) {
       auto other = b == backend ? result<std::unique_ptr<gpu>>(failure{"unused"}) : open_gpu(b);
       if (b != backend && !other) {
-        std::fprintf(stderr, "dstrans bench: hair and smoke on %s skipped: %s\n", b.c_str(), other.error().c_str());
+        std::fprintf(stderr, "dstrans bench: hair, smoke and post-processing on %s skipped: %s\n", b.c_str(), other.error().c_str());
         continue;
       }
       const gpu& on = b == backend ? **g : **other;
@@ -439,6 +549,14 @@ int bench(std::vector<std::string> args) {
         return 1;
       }
       for (const json& r : *volumes) results.push_back(r);
+      render::options post_base = base;
+      post_base.refraction = 8.0f;
+      auto post = post_records(with_lights(scenes.at("glass_room"), fixed), post_base, b, draw);
+      if (!post) {
+        std::fprintf(stderr, "dstrans bench: post-processing on %s: %s\n", b.c_str(), post.error().c_str());
+        return 1;
+      }
+      for (const json& r : *post) results.push_back(r);
     }
     std::ofstream(out + "/results.json") << results.dump(1) << "\n";
     // report.md and the plot come from results.json alone (bench/report.py, matplotlib); Debian's python3

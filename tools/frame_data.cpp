@@ -6,6 +6,8 @@
 
 #include <dstrans/particles.hpp>
 
+#include "passes.hpp"
+
 namespace dstrans::render {
 
 namespace {
@@ -112,6 +114,24 @@ frame_plan plan_of(const scene& s, const options& o) {
   p.forward_depth = o.method == technique::forward_depth;
   p.peeling = o.method == technique::peeling;
   p.layers = p.forward ? 0 : p.peeling ? 2 : 1;
+  // The scene's post-processing chain, on the deferred techniques (it reads the G-buffer): its passes and
+  // targets join the plan, each target the final image's format.
+  if (!p.forward) {
+    p.post = plan_post(s.post, o.method == technique::interlaced && p.on.has(effect::transparency));
+    const target_desc t = final_target_desc(o.float_targets);
+    for (const post_pass& pass : p.post.passes) {
+      std::vector<std::string> reads;
+      for (const std::string& in : pass.inputs)
+        if (in == "gbuffer")
+          for (int k = 0; k < 4; ++k) reads.push_back("gbuffer.RT" + std::to_string(k));
+        else reads.push_back(in == "frame" ? "output" : "post." + in);
+      p.pipeline.passes.push_back({"post " + pass.name, reads, {"post." + pass.output}, pass.switches});
+    }
+    for (const std::string& name : p.post.targets) {
+      p.pipeline.targets.push_back({"post." + name, info(t.fmt).name, info(t.fmt).bytes_per_pixel, false});
+      p.pipeline.bytes_per_pixel += info(t.fmt).bytes_per_pixel;
+    }
+  }
   return p;
 }
 

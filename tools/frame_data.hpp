@@ -10,6 +10,7 @@
 #include <dstrans/light_volume.hpp>
 #include <dstrans/light_mesh.hpp>
 #include <dstrans/pipeline.hpp>
+#include <dstrans/post.hpp>
 #include <dstrans/scene.hpp>
 
 namespace dstrans::render {
@@ -63,6 +64,7 @@ struct frame_plan {
   std::vector<shadow_mode> lookups;  // per light: no shadow, the plain lookup, or Eq. 3.1's
   bool forward, forward_depth, peeling;
   int layers;              // G-buffers (and light buffers): 0 forward, 2 peeling, 1 interlaced
+  post_plan post;          // the scene's post-processing chain (deferred techniques only; in pipeline too)
   bool uses(shadow_mode lookup) const {
     for (shadow_mode m : lookups)
       if (m == lookup) return true;

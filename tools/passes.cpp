@@ -160,6 +160,8 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
   }
   if (plan.on.has(effect::light_volumes))
     if (auto ok = add("particle pass", particle_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
+  for (const post_pass& pass : plan.post.passes)
+    if (auto ok = add("post " + pass.name, post_pass_sources(dir, pass)); !ok) return failure{ok.error()};
   return out;
 }
 
@@ -246,6 +248,21 @@ result<pass_sources> particle_pass(const std::string& dir, shadow_mode shadows, 
   std::vector<std::string> files{"particle.frag.glsl"};
   if (o.particles == options::particle_light::forward && shadows != shadow_mode::off) files.insert(files.begin(), "lighting.glsl");
   if (auto ok = finish(p.fragment, dir, files, switches); !ok) return failure{ok.error()};
+  return p;
+}
+
+result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass) {
+  pass_sources p{glsl::fullscreen_vertex_shader(), {}};
+  for (const std::string& in : pass.inputs)
+    if (in == "gbuffer") {
+      glsl::layout_options read;
+      read.sides = glsl::side::read;
+      read.first_binding = gbuffer_binding;
+      glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
+    }
+  for (const std::string& sw : pass.switches)
+    if (sw == "DST_AA_INTERLACE") glsl::add_interlace<I>(p.fragment);
+  if (auto ok = finish(p.fragment, dir, {"post.glsl", pass.shader}, pass.switches); !ok) return failure{ok.error()};
   return p;
 }
 

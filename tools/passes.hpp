@@ -65,6 +65,12 @@ result<pass_sources> particle_pass(const std::string& dir, shadow_mode shadows, 
 constexpr int volume_lights_binding = 25, volume_texels_binding = 26, volume_region_binding = 27,
               particle_regions_binding = 28, volume_atlas_binding = 29, shadow_layers_binding = 30;
 
+// A pass of the post-processing chain (post.hpp): the full-screen triangle and the pass's shader, its
+// texture inputs at post_input_binding and the next, its parameters' block at post_params_binding, the
+// G-buffer at its bindings if the pass reads "gbuffer".
+result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass);
+constexpr int post_input_binding = 32, post_params_binding = 34;
+
 // Every shader variant the deferred pipeline of `plan` compiles for scene `s`, named as its passes and
 // programs are labelled ("gbuffer pass", "light pass transparent shadows volume", ...).
 struct named_pass {

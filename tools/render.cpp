@@ -29,9 +29,11 @@ const char* const usage =
     "       [--particles six-axes|four-axes|fourteen-axes|forward] [--volume-cells N]   particle systems\n"
     "                           (S2): lit from light volumes of N (1 to 64) cells a side on six, four or\n"
     "                           fourteen axes, or per fragment (the reference)\n"
+    "       [--post CHAIN.json]   post-processing after the frame: {\"post\": [...]} as in scene files, in\n"
+    "                           place of the scene's own chain (deferred techniques)\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
-    "writes DIR/final.png, a PNG per buffer and DIR/frame.json\n";
+    "writes DIR/final.png (after the chain), a PNG per buffer and per effect (post_NAME.png), and DIR/frame.json\n";
 }  // namespace
 
 int render(std::vector<std::string> args) {
@@ -42,6 +44,7 @@ int render(std::vector<std::string> args) {
   try {
     const std::string backend = take_option(args, "--backend", "");
     const std::string out = take_option(args, "--out", "");
+    const std::string post_file = take_option(args, "--post", "");
     const std::string technique = take_option(args, "--technique", "interlaced");
     render::options o;
     o.width = to_int(take_option(args, "--width", "320"), 1, 8192, "--width");
@@ -90,10 +93,18 @@ int render(std::vector<std::string> args) {
     else if (technique != "interlaced")
       throw usage_error{"unknown technique '" + technique + "' (known: interlaced, peeling, forward, forward-depth)"};
     if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
-    const auto s = load_scene(args[0]);
+    auto s = load_scene(args[0]);
     if (!s) {
       std::fprintf(stderr, "dstrans render: %s\n", s.error().c_str());
       return 1;
+    }
+    if (!post_file.empty()) {
+      auto chain = load_post_chain(post_file);
+      if (!chain) {
+        std::fprintf(stderr, "dstrans render: %s\n", chain.error().c_str());
+        return 1;
+      }
+      s->post = *chain;
     }
     auto g = open_gpu(backend);
     if (!g) {

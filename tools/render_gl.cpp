@@ -294,6 +294,28 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     glVertexArrayAttribFormat(particle_vao, 2, 4, GL_FLOAT, GL_FALSE, GLuint(offsetof(particle_vertex, corner)));
     upload_quads(s.view);
   }
+  // The post-processing chain (post.hpp): a program and a parameter block a pass, a target a name the
+  // passes write, and the registry of names to textures ("frame": the composed image).
+  const post_plan& post = plan.post;
+  std::vector<GLuint> post_progs, post_blocks;
+  std::map<std::string, gl::targets> post_targets;
+  std::map<std::string, GLuint> registry{{"frame", final_target->textures[0]}};
+  for (const post_pass& pass : post.passes) {
+    auto p = r.program(post_pass_sources(shader_dir, pass), "post " + pass.name);
+    if (!p) return failure{p.error()};
+    post_progs.push_back(*p);
+    post_blocks.push_back(r.buffer(std::vector<glm::vec4>{glm::vec4(pass.params[0], pass.params[1], pass.params[2], pass.params[3])},
+                                   "post " + pass.name));
+  }
+  for (const std::string& name : post.targets) {
+    auto t = gl::make_targets({final_target_desc(o.float_targets)}, o.width, o.height, "post " + name, false);
+    if (!t) return failure{t.error()};
+    r.targets.push_back(*t);
+    post_targets[name] = *t;
+    registry[name] = t->textures[0];
+  }
+  const gl::targets& shown = post.passes.empty() ? *final_target : post_targets.at(post.output);
+
   // One bake dispatch a region, with the lights in `lights`, reading the camera's frame and the shadow map.
   auto bake = [&](GLuint prog, GLuint lights) {
     glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
@@ -569,8 +591,25 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         glBindVertexArray(particle_vao);
         glDrawArrays(GL_TRIANGLES, 0, GLsizei(particle_vertices));
       });
+    for (std::size_t k = 0; k < post.passes.size(); ++k)
+      timed("post " + post.passes[k].effect, [&] {
+        const post_pass& pass = post.passes[k];
+        gl::debug_group g("post " + pass.name);
+        gl::bind(post_targets.at(pass.output));
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+        glBindBufferBase(GL_UNIFORM_BUFFER, post_params_binding, post_blocks[k]);
+        for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+        GLuint unit = post_input_binding;
+        for (const std::string& in : pass.inputs)
+          if (in != "gbuffer") glBindTextureUnit(unit++, registry.at(in));
+        glUseProgram(post_progs[k]);
+        gl::draw_fullscreen(fullscreen_vao);
+      });
     frames.push_back(current);
-    if (hooks) hooks->after(final_target->framebuffer, current);
+    if (hooks) hooks->after(shown.framebuffer, current);
   }
   if (frames.empty()) return failure{"no frame was drawn"};
   summarize(frames, out);
@@ -587,7 +626,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       out.buffers.push_back({"depth", to_image(gl::read_texels(lit, 2), format::r32f, w, h, view_as::depth,
                                                s.view.near_plane, s.view.far_plane)});
   }
-  out.final_texels = gl::read_texels(*final_target, 0);
+  out.final_texels = gl::read_texels(shown, 0);
   if (many) {
     out.kbuffer_heads.resize(std::size_t(o.width) * std::size_t(o.height));
     glGetTextureImage(heads, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(out.kbuffer_heads.size() * 4), out.kbuffer_heads.data());
@@ -616,6 +655,11 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   if (!shadow_picture.empty())
     out.buffers.push_back(
         {"shadow_colour", to_image(shadow_picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
+  if (!post.passes.empty()) {
+    out.buffers.push_back({"composed", to_image(gl::read_texels(*final_target, 0), final_format, w, h, view_as::rgb)});
+    for (const std::string& effect : post.effects)
+      out.buffers.push_back({"post_" + effect, to_image(gl::read_texels(post_targets.at(effect), 0), final_format, w, h, view_as::rgb)});
+  }
   return out;
 }
 

@@ -400,6 +400,31 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     }
   }
 
+  // The post-processing chain (post.hpp): a pipeline a pass, a target a name the passes write, and the
+  // registry of names to images ("frame": the composed image).
+  const post_plan& post = plan.post;
+  std::vector<compiled> post_shaders;
+  std::vector<vk::pipeline> post_pipes;
+  std::map<std::string, vk::targets> post_targets;
+  std::map<std::string, VkImageView> registry{{"frame", final_target->colors[0].view}};
+  for (const post_pass& pass : post.passes) {
+    auto sh = compile(dev, post_pass_sources(shader_dir, pass), "post " + pass.name);
+    if (!sh) return failure{sh.error()};
+    auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, final_target->formats, "post " + pass.name);
+    if (!p) return failure{p.error()};
+    r.pipelines.push_back(*p);
+    post_shaders.push_back(*sh);
+    post_pipes.push_back(*p);
+  }
+  for (const std::string& name : post.targets) {
+    auto t = dev.make_targets({final_target_desc(o.float_targets)}, o.width, o.height, "post " + name, false);
+    if (!t) return failure{t.error()};
+    r.targets.push_back(*t);
+    post_targets[name] = *t;
+    registry[name] = t->colors[0].view;
+  }
+  const vk::targets& shown = post.passes.empty() ? *final_target : post_targets.at(post.output);
+
   // Buffers.
   frame_block camera = camera_frame(s, o);
   camera.params.z = float(hair_shadow_light(plan));
@@ -441,6 +466,10 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       made.push_back(r.buffer(std::vector<volume_light>{volume_light_of(s.lights[i], i)}, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               "volume light " + std::to_string(i)));
   }
+  const std::size_t post_first = made.size();
+  for (const post_pass& pass : post.passes)
+    made.push_back(r.buffer(std::vector<glm::vec4>{glm::vec4(pass.params[0], pass.params[1], pass.params[2], pass.params[3])},
+                            VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "post " + pass.name));
   for (const auto& b : made)
     if (!b) return failure{b.error()};
   VkBuffer volume_texels = VK_NULL_HANDLE, unshadowed_buffer = VK_NULL_HANDLE, regions_buffer = VK_NULL_HANDLE,
@@ -464,7 +493,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   vkCreateSampler(ctx.device, &sci, ctx.allocator, &r.sampler);
   sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;  // the volume atlas is read trilinearly
   vkCreateSampler(ctx.device, &sci, ctx.allocator, &r.linear_sampler);
-  const std::uint32_t sets = std::uint32_t(7 + 2 * s.lights.size() + atlas.regions.size() * (1 + shadowed_lights.size()));
+  const std::uint32_t sets =
+      std::uint32_t(7 + 2 * s.lights.size() + atlas.regions.size() * (1 + shadowed_lights.size()) + post.passes.size());
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * sets},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * sets},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8 * sets},
@@ -766,6 +796,24 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         dev.end_rendering(cmd);
       });
     }
+    for (std::size_t k = 0; k < post.passes.size(); ++k) {
+      const post_pass& pass = post.passes[k];
+      bindings b = common;
+      b.buffers[post_params_binding] = *made[post_first + k];
+      int binding = post_input_binding;
+      for (const std::string& in : pass.inputs)
+        if (in != "gbuffer") b.images[binding++] = registry.at(in);
+      auto set = make_set(r, post_pipes[k], {post_shaders[k].vertex, post_shaders[k].fragment}, b);
+      if (!set) return failure{set.error()};
+      timed("post " + pass.effect, [&](VkCommandBuffer cmd) {
+        barrier(cmd);
+        dev.begin_rendering(cmd, post_targets.at(pass.output), {});
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, post_pipes[k].handle);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, post_pipes[k].layout, 0, 1, &*set, 0, nullptr);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        dev.end_rendering(cmd);
+      });
+    }
     frames.push_back(current);
   }
   summarize(frames, out);
@@ -796,7 +844,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!light_texels) return failure{light_texels.error()};
     out.light_buffer = *light_texels;
   }
-  auto final_texels = dev.read_texels(*final_target, 0);
+  auto final_texels = dev.read_texels(shown, 0);
   if (!final_texels) return failure{final_texels.error()};
   out.final_texels = *final_texels;
   if (many) {
@@ -822,6 +870,11 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
                                  {"depth" + suffix, gb, 3, format::r32f, view_as::depth},
                                  {"light" + suffix, lb, 0, light_format, view_as::rgb},
                                  {"specular" + suffix, lb, 0, light_format, view_as::alpha}});
+  }
+  if (!post.passes.empty()) {
+    wanted.push_back({"composed", &*final_target, 0, final_target_desc(o.float_targets).fmt, view_as::rgb});
+    for (const std::string& effect : post.effects)
+      wanted.push_back({"post_" + effect, &post_targets.at(effect), 0, final_target_desc(o.float_targets).fmt, view_as::rgb});
   }
   for (const auto& [name, t, index, f, how] : wanted) {
     auto img = picture(*t, index, f, w, h, how);

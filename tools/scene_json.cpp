@@ -193,7 +193,65 @@ particle_system read_particles(reader& r, const std::map<std::string, std::uint3
   return ps;
 }
 
+post_effect read_post(reader& r) {
+  post_effect e;
+  const std::string kind = r.text("effect");
+  const post_kind kinds[] = {post_kind::blur, post_kind::bloom, post_kind::depth_of_field, post_kind::greyscale,
+                             post_kind::sepia, post_kind::antialias};
+  bool known = false;
+  for (post_kind k : kinds)
+    if (kind == post_name(k)) {
+      e.kind = k;
+      known = true;
+    }
+  if (!known) throw bad_field{r.field("effect") + ": unknown effect '" + kind + "' (blur, bloom, dof, greyscale, sepia, aa)"};
+  if (e.kind == post_kind::blur || e.kind == post_kind::bloom || e.kind == post_kind::depth_of_field) {
+    e.radius = int(r.number("radius", float(e.radius), 0.0f, 64.0f));
+    e.sigma = r.number("sigma", e.sigma, 0.0f, 64.0f);
+  }
+  if (e.kind == post_kind::bloom) {
+    e.threshold = r.number("threshold", e.threshold, 0.0f, big);
+    e.intensity = r.number("intensity", e.intensity, 0.0f, big);
+  }
+  if (e.kind == post_kind::depth_of_field) {
+    e.focus = r.number("focus", e.focus, 0.0f, big);
+    e.range = r.number("range", e.range, 0.0f, big);
+  }
+  if (e.kind == post_kind::antialias) {
+    e.normal_scale = r.number("normal_scale", e.normal_scale, 0.0f, big);
+    e.depth_scale = r.number("depth_scale", e.depth_scale, 0.0f, big);
+    e.interlace = r.boolean("interlace", e.interlace);
+    e.strength = r.number("strength", e.strength, 0.0f, 1.0f);
+  }
+  r.finish();
+  return e;
+}
+
+std::vector<post_effect> read_post_chain(const json& chain, const std::string& path) {
+  if (!chain.is_array()) throw bad_field{path + ": expected an array"};
+  std::vector<post_effect> out;
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    reader e(chain[i], path + "[" + std::to_string(i) + "]");
+    out.push_back(read_post(e));
+  }
+  return out;
+}
+
 }  // namespace
+
+result<std::vector<post_effect>> parse_post_chain(const std::string& text, const std::string& name) {
+  try {
+    const json root = json::parse(text);
+    reader top(root, "");
+    auto chain = read_post_chain(top.raw("post"), "post");
+    top.finish();
+    return chain;
+  } catch (const json::exception& e) {
+    return failure{name + ": not valid JSON: " + e.what()};
+  } catch (const bad_field& e) {
+    return failure{name + ": " + e.message};
+  }
+}
 
 result<scene> parse_scene(const std::string& text, const std::string& name) {
   try {
@@ -241,6 +299,7 @@ result<scene> parse_scene(const std::string& text, const std::string& name) {
         s.particles.push_back(read_particles(p, materials));
       }
     }
+    if (top.has("post")) s.post = read_post_chain(root["post"], "post");
     top.finish();
     return s;
   } catch (const json::exception& e) {
@@ -250,12 +309,26 @@ result<scene> parse_scene(const std::string& text, const std::string& name) {
   }
 }
 
-result<scene> load_scene(const std::string& path) {
+namespace {
+result<std::string> read_text(const std::string& path, const char* what) {
   std::ifstream in(path);
-  if (!in) return failure{path + ": cannot read the scene file"};
+  if (!in) return failure{path + ": cannot read the " + what};
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_scene(text.str(), path);
+  return text.str();
+}
+}  // namespace
+
+result<scene> load_scene(const std::string& path) {
+  auto text = read_text(path, "scene file");
+  if (!text) return failure{text.error()};
+  return parse_scene(*text, path);
+}
+
+result<std::vector<post_effect>> load_post_chain(const std::string& path) {
+  auto text = read_text(path, "post-processing chain");
+  if (!text) return failure{text.error()};
+  return parse_post_chain(*text, path);
 }
 
 }  // namespace dstrans

@@ -15,11 +15,15 @@
 //                "position": [x,y,z], "direction": [x,y,z], "range": r, "inner_angle": deg,
 //                "outer_angle": deg, "shadows": bool}, ...],
 //    "particles": [{"material": "name", "base": [x,y,z], "radius": r, "height": h, "size": s,
-//                   "count": n, "seed": k}, ...]}
+//                   "count": n, "seed": k}, ...],
+//    "post": [{"effect": "blur"|"bloom"|"dof"|"greyscale"|"sepia"|"aa", parameters...}, ...]}
 // Shape parameters: box and room "size": [x,y,z]; pane "size": [w,h]; sphere "radius"; cylinder and
 // bottle "radius", "height"; sphere, cylinder and bottle "segments" (default 32); hair "radius" (of the
 // scalp), "strands", "length", "width" (default 0.01), "segments" (default 8), "seed" (default 1).
 // Particle systems (dstrans::particle_system): radius 0.5, height 2, size 0.25, count 100, seed 1 unless given.
+// Post effects (dstrans::post_effect, run in order after the frame): blur, bloom and dof "radius" (taps, 4)
+// and "sigma" (2); bloom "threshold" (0.8) and "intensity" (1); dof "focus" (5) and "range" (2); aa
+// "normal_scale" (4), "depth_scale" (20), "strength" (1/3) and "interlace" (true). A file of {"post": [...]} alone is a chain.
 #pragma once
 
 #include <string>
@@ -33,5 +37,8 @@ namespace dstrans {
 result<scene> load_scene(const std::string& path);
 // The scene in JSON text `text`; `name` prefixes error messages.
 result<scene> parse_scene(const std::string& text, const std::string& name);
+// A post-processing chain alone: a file or text of {"post": [...]}, to run after any scene.
+result<std::vector<post_effect>> load_post_chain(const std::string& path);
+result<std::vector<post_effect>> parse_post_chain(const std::string& text, const std::string& name);
 
 }  // namespace dstrans

@@ -27,6 +27,7 @@
 #include "kbuffer.hpp"
 #include "light_basis.hpp"
 #include "light_volume.hpp"
+#include "post.hpp"
 #include "phong.hpp"
 #include "refraction.hpp"
 #include "surface.hpp"
@@ -388,6 +389,21 @@ inline const std::vector<formula>& formulas() {
           .within({"offset"}, {0.0f, 64.0f})
           .within({"dims"}, {1.0f, 32.0f})
           .within({"atlas_size"}, {64.0f, 128.0f}),
+      DSTRANS_FORMULA(dst_post, dst_gaussian).within("x", {-16.0f, 16.0f}).within("sigma", {0.1f, 8.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_post, dst_luminance).within("c", {0.0f, 1.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_post, dst_bright_pass).within("c", {0.0f, 1.0f}).within("threshold", {0.0f, 1.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_post, dst_greyscale).within("c", {0.0f, 1.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_post, dst_at_most_one),
+      DSTRANS_FORMULA(dst_post, dst_sepia).within("c", {0.0f, 1.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_post, dst_blur_amount)
+          .within({"distance", "focus"}, {0.0f, 50.0f})
+          .within("range", {0.01f, 10.0f})
+          .yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_post, dst_edge_weight)
+          .within({"n0", "n1"}, unit_vector())
+          .within({"d0", "d1"}, {0.1f, 100.0f})
+          .within({"normal_scale", "depth_scale"}, {0.0f, 100.0f})
+          .yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_octahedral, dst_octahedral_encode).within("n", unit_vector()).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_octahedral, dst_octahedral_decode).within("e", {-1.0f, 1.0f}).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_fragment_node, dst_pack_tangent).within("tangent", unit_vector()).packs(16),

@@ -16,6 +16,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "post.hpp"
+
 namespace dstrans {
 
 // Triangles with per-vertex normals, counter-clockwise seen from the side the normals point to.
@@ -89,6 +91,7 @@ struct scene {
   camera view;
   glm::vec3 ambient{0.05f};
   std::vector<particle_system> particles;
+  std::vector<post_effect> post;  // the post-processing chain after the frame (post.hpp), in order
 };
 
 // A whole scene in world space, for one draw call: vertex i has positions[i], normals[i], materials[i].
