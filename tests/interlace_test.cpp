@@ -70,3 +70,25 @@ TEST_CASE("none: every pixel keeps transparency and is its own partner", "[inter
       CHECK(I::partner({x, y}, {3, 3}) == glm::ivec2(x, y));
     }
 }
+
+// Issue 12: the edge-aware reconstruction's two formulas.
+TEST_CASE("reconstruction returns a constant layer exactly and adds nothing across an edge", "[interlace][reconstruct]") {
+  using shader::dst_layer_similarity;
+  using shader::dst_reconstruct;
+  const glm::vec3 up(0, 1, 0), side(1, 0, 0);
+  // The same surface: full weight; the other layer class, a depth step of 10%, a fold: none.
+  CHECK(dst_layer_similarity(0.9f, up, 1.0f, 0.9f, up, 1.0f) == 1.0f);
+  CHECK(dst_layer_similarity(0.9f, up, 0.4f, 0.9f, up, 1.0f) == 0.0f);
+  CHECK(dst_layer_similarity(0.9f, up, 1.0f, 0.91f, up, 1.0f) == 0.0f);  // 1 - 0.91 = 0.09: a step of 11%
+  CHECK(dst_layer_similarity(0.9f, up, 1.0f, 0.9f, side, 1.0f) == 0.0f);
+  CHECK(dst_layer_similarity(0.9f, up, 1.0f, 0.9004f, up, 1.0f) > 0.9f);  // 0.4% farther: the same surface
+  CHECK(dst_layer_similarity(1.0f, up, 1.0f, 1.0f, up, 1.0f) == 1.0f);    // both the cleared background
+  // A constant layer comes back bit for bit, whatever the weights.
+  for (const glm::vec4 v : {glm::vec4(0.1f, 0.2f, 0.3f, 0.7f), glm::vec4(0.999f), glm::vec4(1e-7f)})
+    for (const glm::vec3 w : {glm::vec3(1.0f), glm::vec3(0.3f, 1.0f, 0.0f), glm::vec3(0.0f)}) CHECK(dst_reconstruct(v, v, v, v, w) == v);
+  // A neighbour across an edge (weight 0) adds nothing; one on the same surface is averaged in.
+  const glm::vec4 near(1, 0, 0, 1), far(0, 1, 0, 1);
+  CHECK(dst_reconstruct(near, far, far, far, glm::vec3(0.0f)) == near);
+  CHECK(dst_reconstruct(near, near * 0.5f, far, far, glm::vec3(1.0f, 0.0f, 0.0f)) == glm::vec4(0.75f, 0, 0, 0.75f));
+  CHECK(dst_reconstruct(near, far, far, far, glm::vec3(std::nanf(""))) == near);
+}

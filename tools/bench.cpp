@@ -346,6 +346,51 @@ result<json> post_records(const scene& room, const render::options& base, const 
   return records;
 }
 
+// Issue 12's sweep on glass_room (scene "glass_room_reconstruct" in the results): each interlace predicate
+// with the thesis's partner fetch and with the edge-aware reconstruction, against depth peeling at the
+// same settings over all pixels and over the glass the peeled first layer holds.
+template <class Draw>
+result<json> reconstruct_records(const scene& room, const render::options& base, const std::string& backend, Draw&& draw) {
+  json records = json::array();
+  render::options o = base;
+  o.method = render::technique::peeling;
+  auto peeled = draw(room, o);
+  if (!peeled) return failure{peeled.error()};
+  std::vector<bool> glass(peeled->gbuffer[0].size());
+  for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, peeled->gbuffer[0][i]).w < 1.0f;
+  const pipeline_plan plan = render::plan_of(room, o).pipeline;
+  auto record = [&](const std::string& technique, const render::options& with, const render::frame& f) {
+    const error e = compare(f.final_image, peeled->final_image, glass);
+    const bool peeling = with.method == render::technique::peeling;
+    records.push_back({{"technique", technique},
+                       {"scene", "glass_room_reconstruct"},
+                       {"backend", backend},
+                       {"settings", {{"predicate", peeling ? json(nullptr) : json(render::predicate_name(with.interlace))},
+                                     {"reconstruction", peeling ? json(nullptr) : json(with.reconstruct ? "edge-aware" : "partner")},
+                                     {"layout", "thesis"}, {"lights", room.lights.size()}, {"width", with.width},
+                                     {"height", with.height}, {"frames", f.frames}}},
+                       {"frame_ms", f.frame_ms},
+                       {"frame_ms_spread", f.frame_ms_spread},
+                       {"peeling_ms", peeled->frame_ms},
+                       {"bytes_per_pixel", peeling ? 2 * plan.bytes_per_pixel : plan.bytes_per_pixel},
+                       {"reference", "deferred depth peeling"},
+                       {"rmse", e.rmse},
+                       {"rmse_transparent", e.rmse_transparent},
+                       {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)}});
+  };
+  record("peeling", o, *peeled);
+  o.method = render::technique::interlaced;
+  for (render::predicate p : {render::predicate::rows, render::predicate::columns, render::predicate::checker})
+    for (bool reconstruct : {false, true}) {
+      o.interlace = p;
+      o.reconstruct = reconstruct;
+      auto f = draw(room, o);
+      if (!f) return failure{f.error()};
+      record(std::string("interlaced-") + render::predicate_name(p) + (reconstruct ? "-edge-aware" : "-partner"), o, *f);
+    }
+  return records;
+}
+
 }  // namespace
 
 int bench(std::vector<std::string> args) {
@@ -557,6 +602,14 @@ int bench(std::vector<std::string> args) {
         return 1;
       }
       for (const json& r : *post) results.push_back(r);
+      render::options shadowed = post_base;
+      shadowed.shadows = render::shadow_mode::transparent;
+      auto layers_sweep = reconstruct_records(with_lights(scenes.at("glass_room"), fixed), shadowed, b, draw);
+      if (!layers_sweep) {
+        std::fprintf(stderr, "dstrans bench: reconstruction on %s: %s\n", b.c_str(), layers_sweep.error().c_str());
+        return 1;
+      }
+      for (const json& r : *layers_sweep) results.push_back(r);
     }
     std::ofstream(out + "/results.json") << results.dump(1) << "\n";
     // report.md and the plot come from results.json alone (bench/report.py, matplotlib); Debian's python3

@@ -23,8 +23,16 @@ enum class shadow_mode { off, opaque, transparent };
 enum class technique { interlaced, peeling, forward, forward_depth };
 inline bool is_forward(technique t) { return t == technique::forward || t == technique::forward_depth; }
 
+// Which pixels of the interlaced G-buffer keep glass (interlace.hpp): the thesis's rows, columns, or the
+// 2x2 checker of inferred lighting. Shadow maps keep the thesis's rows.
+enum class predicate { rows, columns, checker };
+
 struct options {
   technique method = technique::interlaced;
+  predicate interlace = predicate::rows;
+  // How the compose pass finds a pixel's other layer: the partner's sample (the thesis), or the edge-aware
+  // reconstruction from the other layer's samples around it (issue 12, dst_reconstruct).
+  bool reconstruct = false;
   int width = 320, height = 180;
   float refraction = 8.0f;      // strength in pixels; 0 turns refraction off
   // In shadow-map depth units, towards the light: removes self-shadowing ("acne") at the cost of light
@@ -83,6 +91,9 @@ inline const char* technique_name(technique t) {
     case technique::forward_depth: return "forward-depth";
   }
   return "?";
+}
+inline const char* predicate_name(predicate p) {
+  return p == predicate::rows ? "rows" : p == predicate::columns ? "columns" : "checker";
 }
 inline const char* shadow_name(shadow_mode m) {
   return m == shadow_mode::off ? "off" : m == shadow_mode::opaque ? "opaque" : "transparent";

@@ -10,7 +10,7 @@ namespace dstrans::render {
 
 namespace {
 
-using I = interlace::rows;
+using I = interlace::rows;  // the shadow maps' predicate
 
 // `src` with the frame interface (and the fragment helpers, for a fragment shader) and then `files`
 // appended, the pass shader last, their #ifdef DST_ sections resolved on `switches`; a failure if a
@@ -46,7 +46,15 @@ result<pass_sources> scene_vertex(const std::string& dir, pass_sources p) {
 
 }  // namespace
 
-result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on) {
+void add_predicate(glsl::source& src, predicate p) {
+  switch (p) {
+    case predicate::rows: glsl::add_interlace<interlace::rows>(src); break;
+    case predicate::columns: glsl::add_interlace<interlace::columns>(src); break;
+    case predicate::checker: glsl::add_interlace<interlace::checker>(src); break;
+  }
+}
+
+result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on, predicate interlace) {
   pass_sources p;
   std::vector<std::string> switches;
   if (which == layer::second) switches.push_back("DST_PEEL");
@@ -56,7 +64,7 @@ result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects o
   // The first peeled layer keeps every nearest fragment, transparent or not.
   if (which == layer::interlaced && on.has(effect::transparency)) {
     switches.push_back(effect_switch(effect::transparency));
-    glsl::add_interlace<I>(p.fragment);
+    add_predicate(p.fragment, interlace);
   }
   if (auto ok = finish(p.fragment, dir, {"gbuffer.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return scene_vertex(dir, std::move(p));
@@ -118,7 +126,8 @@ result<pass_sources> compose_pass(const std::string& dir, effects on, const opti
     if (on.has(e)) switches.push_back(effect_switch(e));
   std::string other = "interlaced.glsl";
   if (o.method == technique::interlaced) {
-    if (on.has(effect::transparency)) glsl::add_interlace<I>(p.fragment);
+    if (on.has(effect::transparency)) add_predicate(p.fragment, o.interlace);
+    if (on.has(effect::transparency) && o.reconstruct) switches.push_back("DST_RECONSTRUCT");
   } else {
     read.first_binding = gbuffer2_binding;
     glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer2", read);
@@ -141,7 +150,7 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
     out.push_back({name, std::move(*p)});
     return true;
   };
-  if (auto ok = add("gbuffer pass", gbuffer_pass(dir, layer::interlaced, plan.on)); !ok) return failure{ok.error()};
+  if (auto ok = add("gbuffer pass", gbuffer_pass(dir, layer::interlaced, plan.on, o.interlace)); !ok) return failure{ok.error()};
   if (plan.shadows != shadow_mode::off)
     if (auto ok = add("shadow pass", shadow_pass(dir, plan.shadows, plan.on)); !ok) return failure{ok.error()};
   for (shadow_mode k : all_lookups)
@@ -161,7 +170,7 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
   if (plan.on.has(effect::light_volumes))
     if (auto ok = add("particle pass", particle_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
   for (const post_pass& pass : plan.post.passes)
-    if (auto ok = add("post " + pass.name, post_pass_sources(dir, pass)); !ok) return failure{ok.error()};
+    if (auto ok = add("post " + pass.name, post_pass_sources(dir, pass, o.interlace)); !ok) return failure{ok.error()};
   return out;
 }
 
@@ -251,7 +260,7 @@ result<pass_sources> particle_pass(const std::string& dir, shadow_mode shadows, 
   return p;
 }
 
-result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass) {
+result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass, predicate interlace) {
   pass_sources p{glsl::fullscreen_vertex_shader(), {}};
   for (const std::string& in : pass.inputs)
     if (in == "gbuffer") {
@@ -261,7 +270,7 @@ result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& 
       glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
     }
   for (const std::string& sw : pass.switches)
-    if (sw == "DST_AA_INTERLACE") glsl::add_interlace<I>(p.fragment);
+    if (sw == "DST_AA_INTERLACE") add_predicate(p.fragment, interlace);
   if (auto ok = finish(p.fragment, dir, {"post.glsl", pass.shader}, pass.switches); !ok) return failure{ok.error()};
   return p;
 }

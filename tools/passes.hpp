@@ -38,8 +38,11 @@ struct pass_sources {
   glsl::source vertex, fragment;
 };
 
+// The interlace predicate `p` (dst_interlace_keep, dst_interlace_partner) into `src`.
+void add_predicate(glsl::source& src, predicate p);
+
 // `dir` is the folder of the pass shaders (shaders/glsl).
-result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on);
+result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on, predicate interlace = predicate::rows);
 result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode, effects on);
 result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, const options& o);
 result<pass_sources> compose_pass(const std::string& dir, effects on, const options& o);
@@ -68,7 +71,7 @@ constexpr int volume_lights_binding = 25, volume_texels_binding = 26, volume_reg
 // A pass of the post-processing chain (post.hpp): the full-screen triangle and the pass's shader, its
 // texture inputs at post_input_binding and the next, its parameters' block at post_params_binding, the
 // G-buffer at its bindings if the pass reads "gbuffer".
-result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass);
+result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass, predicate interlace = predicate::rows);
 constexpr int post_input_binding = 32, post_params_binding = 34;
 
 // Every shader variant the deferred pipeline of `plan` compiles for scene `s`, named as its passes and

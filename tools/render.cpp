@@ -31,6 +31,8 @@ const char* const usage =
     "                           fourteen axes, or per fragment (the reference)\n"
     "       [--post CHAIN.json]   post-processing after the frame: {\"post\": [...]} as in scene files, in\n"
     "                           place of the scene's own chain (deferred techniques)\n"
+    "       [--interlace rows|columns|checker] [--reconstruct partner|edge-aware]   the interlaced G-buffer's\n"
+    "                           predicate, and how the compose pass finds a pixel's other layer\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png (after the chain), a PNG per buffer and per effect (post_NAME.png), and DIR/frame.json\n";
@@ -66,6 +68,13 @@ int render(std::vector<std::string> args) {
     else if (particles == "forward") o.particles = render::options::particle_light::forward;
     else if (particles != "six-axes")
       throw usage_error{"--particles must be six-axes, four-axes, fourteen-axes or forward, not '" + particles + "'"};
+    const std::string predicate = take_option(args, "--interlace", "rows");
+    if (predicate == "columns") o.interlace = render::predicate::columns;
+    else if (predicate == "checker") o.interlace = render::predicate::checker;
+    else if (predicate != "rows") throw usage_error{"--interlace must be rows, columns or checker, not '" + predicate + "'"};
+    const std::string reconstruct = take_option(args, "--reconstruct", "partner");
+    if (reconstruct == "edge-aware") o.reconstruct = true;
+    else if (reconstruct != "partner") throw usage_error{"--reconstruct must be partner or edge-aware, not '" + reconstruct + "'"};
     o.volume_cells = to_int(take_option(args, "--volume-cells", "16"), 1, 64, "--volume-cells");
     const std::string bias = take_option(args, "--shadow-bias", "0.0005");
     try {

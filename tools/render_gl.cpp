@@ -72,7 +72,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   if (!forward) {
     for (layer which :
          peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
-      auto p = r.program(gbuffer_pass(shader_dir, which, plan.on), "gbuffer pass");
+      auto p = r.program(gbuffer_pass(shader_dir, which, plan.on, o.interlace), "gbuffer pass");
       if (!p) return failure{p.error()};
       gbuffer_progs.push_back(*p);
     }
@@ -301,7 +301,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   std::map<std::string, gl::targets> post_targets;
   std::map<std::string, GLuint> registry{{"frame", final_target->textures[0]}};
   for (const post_pass& pass : post.passes) {
-    auto p = r.program(post_pass_sources(shader_dir, pass), "post " + pass.name);
+    auto p = r.program(post_pass_sources(shader_dir, pass, o.interlace), "post " + pass.name);
     if (!p) return failure{p.error()};
     post_progs.push_back(*p);
     post_blocks.push_back(r.buffer(std::vector<glm::vec4>{glm::vec4(pass.params[0], pass.params[1], pass.params[2], pass.params[3])},

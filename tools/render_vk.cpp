@@ -213,7 +213,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   for (layer which : forward   ? std::vector<layer>{}
                      : peeling ? std::vector<layer>{layer::first, layer::second}
                                : std::vector<layer>{layer::interlaced}) {
-    auto sh = compile(dev, gbuffer_pass(shader_dir, which, plan.on), "gbuffer pass");
+    auto sh = compile(dev, gbuffer_pass(shader_dir, which, plan.on, o.interlace), "gbuffer pass");
     if (!sh) return failure{sh.error()};
     auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, gbuffers[0].formats, "gbuffer pass", scene_state);
     if (!p) return failure{p.error()};
@@ -408,7 +408,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   std::map<std::string, vk::targets> post_targets;
   std::map<std::string, VkImageView> registry{{"frame", final_target->colors[0].view}};
   for (const post_pass& pass : post.passes) {
-    auto sh = compile(dev, post_pass_sources(shader_dir, pass), "post " + pass.name);
+    auto sh = compile(dev, post_pass_sources(shader_dir, pass, o.interlace), "post " + pass.name);
     if (!sh) return failure{sh.error()};
     auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, final_target->formats, "post " + pass.name);
     if (!p) return failure{p.error()};

@@ -389,6 +389,13 @@ inline const std::vector<formula>& formulas() {
           .within({"offset"}, {0.0f, 64.0f})
           .within({"dims"}, {1.0f, 32.0f})
           .within({"atlas_size"}, {64.0f, 128.0f}),
+      DSTRANS_FORMULA(dst_reconstruct, dst_layer_similarity)
+          .within({"depth_a", "depth_b"}, {0.0f, 1.0f})
+          .within({"normal_a", "normal_b"}, unit_vector())
+          .within({"alpha_a", "alpha_b"}, {0.0f, 1.0f})
+          .yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_reconstruct, dst_reconstruct).within({"partner", "a", "b", "c"}, {0.0f, 1.0f}).within("weights", {0.0f, 1.0f})
+          .yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_post, dst_gaussian).within("x", {-16.0f, 16.0f}).within("sigma", {0.1f, 8.0f}).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_post, dst_luminance).within("c", {0.0f, 1.0f}).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_post, dst_bright_pass).within("c", {0.0f, 1.0f}).within("threshold", {0.0f, 1.0f}).yields(0.0f, 1.0f),
