@@ -83,6 +83,7 @@ TEST_CASE("GL: a G-buffer written by a shader holds the CPU's bytes (on the grid
     check_gbuffer_write<thesis_gbuffer>(*ctx, 37, 23, exact);
     check_gbuffer_write<testing::float_layout>(*ctx, 37, 23, exact);
     check_gbuffer_write<thesis_shadow_map>(*ctx, 16, 9, exact);
+    check_gbuffer_write<compact_gbuffer>(*ctx, 37, 23, exact);
   }
 }
 

@@ -113,6 +113,7 @@ TEST_CASE("VK: a G-buffer written by a shader holds the CPU's bytes (on the grid
     check_gbuffer_write<thesis_gbuffer>(*fx.dev, 37, 23, exact);
     check_gbuffer_write<testing::float_layout>(*fx.dev, 37, 23, exact);
     check_gbuffer_write<thesis_shadow_map>(*fx.dev, 16, 9, exact);
+    check_gbuffer_write<compact_gbuffer>(*fx.dev, 37, 23, exact);
   }
 }
 

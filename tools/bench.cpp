@@ -358,21 +358,21 @@ result<json> reconstruct_records(const scene& room, const render::options& base,
   if (!peeled) return failure{peeled.error()};
   std::vector<bool> glass(peeled->gbuffer[0].size());
   for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, peeled->gbuffer[0][i]).w < 1.0f;
-  const pipeline_plan plan = render::plan_of(room, o).pipeline;
   auto record = [&](const std::string& technique, const render::options& with, const render::frame& f) {
     const error e = compare(f.final_image, peeled->final_image, glass);
     const bool peeling = with.method == render::technique::peeling;
+    const pipeline_plan plan = render::plan_of(room, with).pipeline;
     records.push_back({{"technique", technique},
                        {"scene", "glass_room_reconstruct"},
                        {"backend", backend},
                        {"settings", {{"predicate", peeling ? json(nullptr) : json(render::predicate_name(with.interlace))},
                                      {"reconstruction", peeling ? json(nullptr) : json(with.reconstruct ? "edge-aware" : "partner")},
-                                     {"layout", "thesis"}, {"lights", room.lights.size()}, {"width", with.width},
+                                     {"layout", render::layout_name(with.layout)}, {"lights", room.lights.size()}, {"width", with.width},
                                      {"height", with.height}, {"frames", f.frames}}},
                        {"frame_ms", f.frame_ms},
                        {"frame_ms_spread", f.frame_ms_spread},
                        {"peeling_ms", peeled->frame_ms},
-                       {"bytes_per_pixel", peeling ? 2 * plan.bytes_per_pixel : plan.bytes_per_pixel},
+                       {"bytes_per_pixel", peeling ? 2 * plan.bytes_per_pixel : plan.bytes_per_pixel},  // the plan counts one layer
                        {"reference", "deferred depth peeling"},
                        {"rmse", e.rmse},
                        {"rmse_transparent", e.rmse_transparent},
@@ -380,14 +380,18 @@ result<json> reconstruct_records(const scene& room, const render::options& base,
   };
   record("peeling", o, *peeled);
   o.method = render::technique::interlaced;
-  for (render::predicate p : {render::predicate::rows, render::predicate::columns, render::predicate::checker})
-    for (bool reconstruct : {false, true}) {
-      o.interlace = p;
-      o.reconstruct = reconstruct;
-      auto f = draw(room, o);
-      if (!f) return failure{f.error()};
-      record(std::string("interlaced-") + render::predicate_name(p) + (reconstruct ? "-edge-aware" : "-partner"), o, *f);
-    }
+  for (render::gbuffer_layout l : {render::gbuffer_layout::thesis, render::gbuffer_layout::compact})
+    for (render::predicate p : {render::predicate::rows, render::predicate::columns, render::predicate::checker})
+      for (bool reconstruct : {false, true}) {
+        o.layout = l;
+        o.interlace = p;
+        o.reconstruct = reconstruct;
+        auto f = draw(room, o);
+        if (!f) return failure{f.error()};
+        record(std::string("interlaced-") + render::predicate_name(p) + (reconstruct ? "-edge-aware" : "-partner") + "-" +
+                   render::layout_name(l),
+               o, *f);
+      }
   return records;
 }
 

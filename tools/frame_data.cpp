@@ -99,7 +99,7 @@ frame_plan plan_of(const scene& s, const options& o) {
   if (o.shadows == shadow_mode::off) e = e.without(effect::shadows);
   e.bits |= o.force.bits;  // forced code runs even where the options leave its effect nothing to do
   p.on = completed(e);
-  p.pipeline = plan_pipeline(p.on);
+  p.pipeline = o.layout == gbuffer_layout::compact ? plan_pipeline<compact_gbuffer>(p.on) : plan_pipeline<thesis_gbuffer>(p.on);
   p.shadows = !p.on.has(effect::shadows)                ? shadow_mode::off
               : p.on.has(effect::transparent_shadows) ? shadow_mode::transparent
                                                       : shadow_mode::opaque;

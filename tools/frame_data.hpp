@@ -23,6 +23,11 @@ enum class shadow_mode { off, opaque, transparent };
 enum class technique { interlaced, peeling, forward, forward_depth };
 inline bool is_forward(technique t) { return t == technique::forward || t == technique::forward_depth; }
 
+// The G-buffer's layout: Table 3.1's (16 bytes a pixel), or compact_gbuffer (8 bytes, depth read from the
+// depth attachment; issue 12).
+enum class gbuffer_layout { thesis, compact };
+inline const char* layout_name(gbuffer_layout l) { return l == gbuffer_layout::thesis ? "thesis" : "compact"; }
+
 // Which pixels of the interlaced G-buffer keep glass (interlace.hpp): the thesis's rows, columns, or the
 // 2x2 checker of inferred lighting. Shadow maps keep the thesis's rows.
 enum class predicate { rows, columns, checker };
@@ -30,6 +35,7 @@ enum class predicate { rows, columns, checker };
 struct options {
   technique method = technique::interlaced;
   predicate interlace = predicate::rows;
+  gbuffer_layout layout = gbuffer_layout::thesis;
   // How the compose pass finds a pixel's other layer: the partner's sample (the thesis), or the edge-aware
   // reconstruction from the other layer's samples around it (issue 12, dst_reconstruct).
   bool reconstruct = false;

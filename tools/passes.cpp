@@ -54,17 +54,37 @@ void add_predicate(glsl::source& src, predicate p) {
   }
 }
 
-result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on, predicate interlace) {
+std::vector<target_desc> gbuffer_targets(gbuffer_layout l) {
+  return l == gbuffer_layout::thesis ? describe<thesis_gbuffer>() : describe<compact_gbuffer>();
+}
+
+std::vector<glm::vec4> gbuffer_clears(gbuffer_layout l) {
+  std::vector<glm::vec4> out;
+  for (const target_desc& t : gbuffer_targets(l))
+    out.push_back(out.empty() ? glm::vec4(0, 0, 0, 1) : t.channels[0] == "depth" ? glm::vec4(1.0f) : glm::vec4(0.0f));
+  return out;
+}
+
+void add_gbuffer_layout(glsl::source& src, gbuffer_layout l, const std::string& name, glsl::layout_options o) {
+  if (l == gbuffer_layout::thesis) {
+    glsl::add_layout<thesis_gbuffer>(src, name, o);
+  } else {
+    if (o.sides == glsl::side::read) o.depth_attachment_binding = o.first_binding + gbuffer_depth_slot;
+    glsl::add_layout<compact_gbuffer>(src, name, o);
+  }
+}
+
+result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on, const options& opt) {
   pass_sources p;
   std::vector<std::string> switches;
   if (which == layer::second) switches.push_back("DST_PEEL");
   glsl::layout_options o;
   o.sides = glsl::side::write;
-  glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", o);
+  add_gbuffer_layout(p.fragment, opt.layout, "gbuffer", o);
   // The first peeled layer keeps every nearest fragment, transparent or not.
   if (which == layer::interlaced && on.has(effect::transparency)) {
     switches.push_back(effect_switch(effect::transparency));
-    add_predicate(p.fragment, interlace);
+    add_predicate(p.fragment, opt.interlace);
   }
   if (auto ok = finish(p.fragment, dir, {"gbuffer.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return scene_vertex(dir, std::move(p));
@@ -103,7 +123,7 @@ result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool v
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = gbuffer_binding;
-  glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
+  add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
   glsl::layout_options write;
   write.sides = glsl::side::write;
   add_light_layout(p.fragment, "light", o.float_targets, write);
@@ -118,7 +138,7 @@ result<pass_sources> compose_pass(const std::string& dir, effects on, const opti
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = gbuffer_binding;
-  glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
+  add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
   read.first_binding = light_binding;
   add_light_layout(p.fragment, "light", o.float_targets, read);
   std::vector<std::string> switches;
@@ -130,7 +150,7 @@ result<pass_sources> compose_pass(const std::string& dir, effects on, const opti
     if (on.has(effect::transparency) && o.reconstruct) switches.push_back("DST_RECONSTRUCT");
   } else {
     read.first_binding = gbuffer2_binding;
-    glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer2", read);
+    add_gbuffer_layout(p.fragment, o.layout, "gbuffer2", read);
     read.first_binding = light2_binding;
     add_light_layout(p.fragment, "light2", o.float_targets, read);
     other = "peeled.glsl";
@@ -150,7 +170,7 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
     out.push_back({name, std::move(*p)});
     return true;
   };
-  if (auto ok = add("gbuffer pass", gbuffer_pass(dir, layer::interlaced, plan.on, o.interlace)); !ok) return failure{ok.error()};
+  if (auto ok = add("gbuffer pass", gbuffer_pass(dir, layer::interlaced, plan.on, o)); !ok) return failure{ok.error()};
   if (plan.shadows != shadow_mode::off)
     if (auto ok = add("shadow pass", shadow_pass(dir, plan.shadows, plan.on)); !ok) return failure{ok.error()};
   for (shadow_mode k : all_lookups)
@@ -170,16 +190,16 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
   if (plan.on.has(effect::light_volumes))
     if (auto ok = add("particle pass", particle_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
   for (const post_pass& pass : plan.post.passes)
-    if (auto ok = add("post " + pass.name, post_pass_sources(dir, pass, o.interlace)); !ok) return failure{ok.error()};
+    if (auto ok = add("post " + pass.name, post_pass_sources(dir, pass, o)); !ok) return failure{ok.error()};
   return out;
 }
 
 // What the k-buffer passes share: the G-buffer's and shadow map's read side, the hair lighting switches.
-void add_layers_inputs(glsl::source& src, shadow_mode shadows, std::vector<std::string>& switches) {
+void add_layers_inputs(glsl::source& src, shadow_mode shadows, const options& o, std::vector<std::string>& switches) {
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = gbuffer_binding;
-  glsl::add_layout<thesis_gbuffer>(src, "gbuffer", read);
+  add_gbuffer_layout(src, o.layout, "gbuffer", read);
   if (shadows != shadow_mode::off) {
     add_shadow_layout(src, shadows, glsl::side::read);
     switches.push_back(effect_switch(effect::shadows));
@@ -199,7 +219,7 @@ std::vector<target_desc> kbuffer_tail_targets() {
 result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows, const options& o) {
   pass_sources p;
   std::vector<std::string> switches;
-  add_layers_inputs(p.fragment, shadows, switches);
+  add_layers_inputs(p.fragment, shadows, o, switches);
   if (o.kbuffer_variant == options::layers::wboit) switches.push_back("DST_LAYERS_WBOIT");
   if (auto ok = finish(p.fragment, dir, {"kbuffer.glsl", "capture.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return scene_vertex(dir, std::move(p));
@@ -208,7 +228,7 @@ result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows, c
 result<pass_sources> resolve_pass(const std::string& dir, shadow_mode shadows, const options& o) {
   pass_sources p{glsl::fullscreen_vertex_shader(), {}};
   std::vector<std::string> switches;
-  add_layers_inputs(p.fragment, shadows, switches);
+  add_layers_inputs(p.fragment, shadows, o, switches);
   // The forward reference keeps up to 64 fragments in order and shades its tail fully too.
   const int k = o.kbuffer_variant == options::layers::forward ? 64 : std::clamp(o.kbuffer_k, 1, 32);
   p.fragment.add("#define DST_K " + std::to_string(k) + "\n", __FILE__, __LINE__);
@@ -253,24 +273,24 @@ result<pass_sources> particle_pass(const std::string& dir, shadow_mode shadows, 
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = gbuffer_binding;
-  glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
+  add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
   std::vector<std::string> files{"particle.frag.glsl"};
   if (o.particles == options::particle_light::forward && shadows != shadow_mode::off) files.insert(files.begin(), "lighting.glsl");
   if (auto ok = finish(p.fragment, dir, files, switches); !ok) return failure{ok.error()};
   return p;
 }
 
-result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass, predicate interlace) {
+result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass, const options& o) {
   pass_sources p{glsl::fullscreen_vertex_shader(), {}};
   for (const std::string& in : pass.inputs)
     if (in == "gbuffer") {
       glsl::layout_options read;
       read.sides = glsl::side::read;
       read.first_binding = gbuffer_binding;
-      glsl::add_layout<thesis_gbuffer>(p.fragment, "gbuffer", read);
+      add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
     }
   for (const std::string& sw : pass.switches)
-    if (sw == "DST_AA_INTERLACE") add_predicate(p.fragment, interlace);
+    if (sw == "DST_AA_INTERLACE") add_predicate(p.fragment, o.interlace);
   if (auto ok = finish(p.fragment, dir, {"post.glsl", pass.shader}, pass.switches); !ok) return failure{ok.error()};
   return p;
 }

@@ -40,9 +40,16 @@ struct pass_sources {
 
 // The interlace predicate `p` (dst_interlace_keep, dst_interlace_partner) into `src`.
 void add_predicate(glsl::source& src, predicate p);
+// The G-buffer layout `l` under `name`: its targets, what it clears them to (empty pixels are opaque black
+// at the far plane), and its GLSL; a read side of the compact layout takes depth from the depth
+// attachment at the binding Table 3.1's depth target would have (first_binding + 3).
+std::vector<target_desc> gbuffer_targets(gbuffer_layout l);
+std::vector<glm::vec4> gbuffer_clears(gbuffer_layout l);
+void add_gbuffer_layout(glsl::source& src, gbuffer_layout l, const std::string& name, glsl::layout_options o);
+constexpr int gbuffer_depth_slot = 3;  // the depth attachment's binding after a compact G-buffer's first
 
 // `dir` is the folder of the pass shaders (shaders/glsl).
-result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on, predicate interlace = predicate::rows);
+result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on, const options& o);
 result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode, effects on);
 result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, const options& o);
 result<pass_sources> compose_pass(const std::string& dir, effects on, const options& o);
@@ -71,7 +78,7 @@ constexpr int volume_lights_binding = 25, volume_texels_binding = 26, volume_reg
 // A pass of the post-processing chain (post.hpp): the full-screen triangle and the pass's shader, its
 // texture inputs at post_input_binding and the next, its parameters' block at post_params_binding, the
 // G-buffer at its bindings if the pass reads "gbuffer".
-result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass, predicate interlace = predicate::rows);
+result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass, const options& o);
 constexpr int post_input_binding = 32, post_params_binding = 34;
 
 // Every shader variant the deferred pipeline of `plan` compiles for scene `s`, named as its passes and

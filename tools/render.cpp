@@ -33,6 +33,7 @@ const char* const usage =
     "                           place of the scene's own chain (deferred techniques)\n"
     "       [--interlace rows|columns|checker] [--reconstruct partner|edge-aware]   the interlaced G-buffer's\n"
     "                           predicate, and how the compose pass finds a pixel's other layer\n"
+    "       [--layout thesis|compact]   the G-buffer: Table 3.1's 16 bytes, or 8 with depth from the attachment\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png (after the chain), a PNG per buffer and per effect (post_NAME.png), and DIR/frame.json\n";
@@ -72,6 +73,9 @@ int render(std::vector<std::string> args) {
     if (predicate == "columns") o.interlace = render::predicate::columns;
     else if (predicate == "checker") o.interlace = render::predicate::checker;
     else if (predicate != "rows") throw usage_error{"--interlace must be rows, columns or checker, not '" + predicate + "'"};
+    const std::string layout = take_option(args, "--layout", "thesis");
+    if (layout == "compact") o.layout = render::gbuffer_layout::compact;
+    else if (layout != "thesis") throw usage_error{"--layout must be thesis or compact, not '" + layout + "'"};
     const std::string reconstruct = take_option(args, "--reconstruct", "partner");
     if (reconstruct == "edge-aware") o.reconstruct = true;
     else if (reconstruct != "partner") throw usage_error{"--reconstruct must be partner or edge-aware, not '" + reconstruct + "'"};

@@ -72,7 +72,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   if (!forward) {
     for (layer which :
          peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
-      auto p = r.program(gbuffer_pass(shader_dir, which, plan.on, o.interlace), "gbuffer pass");
+      auto p = r.program(gbuffer_pass(shader_dir, which, plan.on, o), "gbuffer pass");
       if (!p) return failure{p.error()};
       gbuffer_progs.push_back(*p);
     }
@@ -187,7 +187,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   std::vector<gl::targets> gbuffers, light_buffers;
   for (int k = 0; k < layers; ++k) {
     const std::string suffix = k ? " 2" : "";
-    auto g = gl::make_targets(describe<thesis_gbuffer>(), o.width, o.height, "gbuffer" + suffix, true);
+    auto g = gl::make_targets(gbuffer_targets(o.layout), o.width, o.height, "gbuffer" + suffix, true);
     if (!g) return failure{g.error()};
     r.targets.push_back(*g);
     gbuffers.push_back(*g);
@@ -196,6 +196,14 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     r.targets.push_back(*l);
     light_buffers.push_back(*l);
   }
+  // A G-buffer's textures at `first` and up (the compact layout's depth attachment at its depth slot), and
+  // the texture that holds its depth.
+  auto bind_gbuffer = [&](int first, const gl::targets& g) {
+    for (std::size_t t = 0; t < g.textures.size(); ++t) glBindTextureUnit(GLuint(first) + GLuint(t), g.textures[t]);
+    if (o.layout == gbuffer_layout::compact) glBindTextureUnit(GLuint(first + gbuffer_depth_slot), g.depth);
+  };
+  auto depth_of = [&](const gl::targets& g) { return o.layout == gbuffer_layout::compact ? g.depth : g.textures[3]; };
+
   // The forward target, and a framebuffer over its colour and depth alone for the light passes.
   gl::targets lit;
   GLuint lit_colour_only = 0;
@@ -301,7 +309,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   std::map<std::string, gl::targets> post_targets;
   std::map<std::string, GLuint> registry{{"frame", final_target->textures[0]}};
   for (const post_pass& pass : post.passes) {
-    auto p = r.program(post_pass_sources(shader_dir, pass, o.interlace), "post " + pass.name);
+    auto p = r.program(post_pass_sources(shader_dir, pass, o), "post " + pass.name);
     if (!p) return failure{p.error()};
     post_progs.push_back(*p);
     post_blocks.push_back(r.buffer(std::vector<glm::vec4>{glm::vec4(pass.params[0], pass.params[1], pass.params[2], pass.params[3])},
@@ -336,7 +344,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
     glBindImageTexture(kbuffer_heads_binding, heads, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kbuffer_nodes_binding, nodes);
-    for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+    bind_gbuffer(gbuffer_binding, gbuffers[0]);
     for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
       glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
     glDisable(GL_DEPTH_TEST);
@@ -377,17 +385,15 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         const gl::targets& gb = gbuffers[std::size_t(k)];
         gl::bind(gb);
         glDepthMask(GL_TRUE);  // clears obey the depth write mask, which the light passes turn off
-        glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 0, clear_opaque_black);
-        glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 1, clear_zero);
-        glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 2, clear_zero);
-        glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, 3, clear_far);
+        const std::vector<glm::vec4> clears = gbuffer_clears(o.layout);
+        for (std::size_t t = 0; t < clears.size(); ++t) glClearNamedFramebufferfv(gb.framebuffer, GL_COLOR, GLint(t), &clears[t].x);
         glClearNamedFramebufferfv(gb.framebuffer, GL_DEPTH, 0, clear_far);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
         glDisable(GL_CULL_FACE);
         glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-        if (k) glBindTextureUnit(GLuint(peel_depth_binding), gbuffers[0].textures[3]);
+        if (k) glBindTextureUnit(GLuint(peel_depth_binding), depth_of(gbuffers[0]));
         glUseProgram(gbuffer_progs[std::size_t(k)]);
         glBindVertexArray(scene_vao);
         glDrawElements(GL_TRIANGLES, GLsizei(m.hair_first), GL_UNSIGNED_INT, nullptr);
@@ -491,8 +497,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
           glDepthMask(GL_FALSE);
           glEnable(GL_BLEND);
           glBlendFunc(GL_ONE, GL_ONE);
-          for (int t = 0; t < 4; ++t)
-            glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[std::size_t(k)].textures[std::size_t(t)]);
+          bind_gbuffer(gbuffer_binding, gbuffers[std::size_t(k)]);
           if (shadowed)
             for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
               glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
@@ -533,12 +538,10 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       if (forward)
         for (std::size_t t = 0; t < lit.textures.size(); ++t) glBindTextureUnit(GLuint(t), lit.textures[t]);
       else
-        for (int t = 0; t < 4; ++t)
-          glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+        bind_gbuffer(gbuffer_binding, gbuffers[0]);
       if (!forward) glBindTextureUnit(GLuint(light_binding), light_buffers[0].textures[0]);
       if (peeling) {
-        for (int t = 0; t < 4; ++t)
-          glBindTextureUnit(GLuint(gbuffer2_binding + t), gbuffers[1].textures[std::size_t(t)]);
+        bind_gbuffer(gbuffer2_binding, gbuffers[1]);
         glBindTextureUnit(GLuint(light2_binding), light_buffers[1].textures[0]);
       }
       glUseProgram(compose_prog);
@@ -578,7 +581,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         gl::bind(*final_target);
         glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-        for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+        bind_gbuffer(gbuffer_binding, gbuffers[0]);
         if (baking) glBindTextureUnit(GLuint(volume_atlas_binding), atlas_texture);
         for (GLuint t = 0; t < 2; ++t)
           if (shadow_layers[t]) glBindTextureUnit(GLuint(shadow_layers_binding) + t, shadow_layers[t]);
@@ -601,7 +604,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         glDisable(GL_CULL_FACE);
         glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
         glBindBufferBase(GL_UNIFORM_BUFFER, post_params_binding, post_blocks[k]);
-        for (int t = 0; t < 4; ++t) glBindTextureUnit(GLuint(gbuffer_binding + t), gbuffers[0].textures[std::size_t(t)]);
+        bind_gbuffer(gbuffer_binding, gbuffers[0]);
         GLuint unit = post_input_binding;
         for (const std::string& in : pass.inputs)
           if (in != "gbuffer") glBindTextureUnit(unit++, registry.at(in));
@@ -616,7 +619,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
 
   const int w = o.width, h = o.height;
   if (!forward) {
-    for (int t = 0; t < 4; ++t) out.gbuffer.push_back(gl::read_texels(gbuffers[0], t));
+    for (std::size_t t = 0; t < gbuffers[0].textures.size(); ++t) out.gbuffer.push_back(gl::read_texels(gbuffers[0], int(t)));
     out.light_buffer = gl::read_texels(light_buffers[0], 0);
   } else {
     for (std::size_t t = 0; t < lit.textures.size(); ++t) out.lit.push_back(gl::read_texels(lit, int(t)));
@@ -646,9 +649,11 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
     const std::string suffix = k ? "_2" : "";
     const gl::targets &gb = gbuffers[std::size_t(k)], &lb = light_buffers[std::size_t(k)];
     out.buffers.push_back({"diffuse" + suffix, to_image(gl::read_texels(gb, 0), format::rgba8, w, h, view_as::rgb)});
-    out.buffers.push_back({"normals" + suffix, to_image(gl::read_texels(gb, 1), format::rgb10a2, w, h, view_as::rgb)});
-    out.buffers.push_back({"depth" + suffix, to_image(gl::read_texels(gb, 3), format::r32f, w, h, view_as::depth,
-                                                      s.view.near_plane, s.view.far_plane)});
+    if (o.layout == gbuffer_layout::thesis) {  // the compact layout's normals are octahedral, its depth an attachment
+      out.buffers.push_back({"normals" + suffix, to_image(gl::read_texels(gb, 1), format::rgb10a2, w, h, view_as::rgb)});
+      out.buffers.push_back({"depth" + suffix, to_image(gl::read_texels(gb, 3), format::r32f, w, h, view_as::depth,
+                                                        s.view.near_plane, s.view.far_plane)});
+    }
     out.buffers.push_back({"light" + suffix, to_image(gl::read_texels(lb, 0), light_format, w, h, view_as::rgb)});
     out.buffers.push_back({"specular" + suffix, to_image(gl::read_texels(lb, 0), light_format, w, h, view_as::alpha)});
   }

@@ -172,7 +172,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   std::vector<vk::targets> gbuffers, light_buffers;
   for (int k = 0; k < layers; ++k) {
     const std::string suffix = k ? " 2" : "";
-    auto g = dev.make_targets(describe<thesis_gbuffer>(), o.width, o.height, "gbuffer" + suffix, true);
+    auto g = dev.make_targets(gbuffer_targets(o.layout), o.width, o.height, "gbuffer" + suffix, true);
     if (!g) return failure{g.error()};
     r.targets.push_back(*g);
     gbuffers.push_back(*g);
@@ -213,7 +213,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   for (layer which : forward   ? std::vector<layer>{}
                      : peeling ? std::vector<layer>{layer::first, layer::second}
                                : std::vector<layer>{layer::interlaced}) {
-    auto sh = compile(dev, gbuffer_pass(shader_dir, which, plan.on, o.interlace), "gbuffer pass");
+    auto sh = compile(dev, gbuffer_pass(shader_dir, which, plan.on, o), "gbuffer pass");
     if (!sh) return failure{sh.error()};
     auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, gbuffers[0].formats, "gbuffer pass", scene_state);
     if (!p) return failure{p.error()};
@@ -408,7 +408,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   std::map<std::string, vk::targets> post_targets;
   std::map<std::string, VkImageView> registry{{"frame", final_target->colors[0].view}};
   for (const post_pass& pass : post.passes) {
-    auto sh = compile(dev, post_pass_sources(shader_dir, pass, o.interlace), "post " + pass.name);
+    auto sh = compile(dev, post_pass_sources(shader_dir, pass, o), "post " + pass.name);
     if (!sh) return failure{sh.error()};
     auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, final_target->formats, "post " + pass.name);
     if (!p) return failure{p.error()};
@@ -512,12 +512,17 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   if (any_shadows)
     for (std::size_t t = 0; t < shadow_map.colors.size(); ++t)
       base.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
+  // A G-buffer's images at `first` and up (the compact layout's depth attachment at its depth slot).
+  auto bind_gbuffer = [&](bindings& b, int first, const vk::targets& g) {
+    for (std::size_t t = 0; t < g.colors.size(); ++t) b.images[first + int(t)] = g.colors[t].view;
+    if (o.layout == gbuffer_layout::compact) b.images[first + gbuffer_depth_slot] = g.depth.view;
+  };
   std::vector<bindings> per_layer(static_cast<std::size_t>(layers), base);
   for (int k = 0; k < layers; ++k) {
     bindings& b = per_layer[std::size_t(k)];
-    for (int t = 0; t < 4; ++t) b.images[gbuffer_binding + t] = gbuffers[std::size_t(k)].colors[std::size_t(t)].view;
+    bind_gbuffer(b, gbuffer_binding, gbuffers[std::size_t(k)]);
     b.images[light_binding] = light_buffers[std::size_t(k)].colors[0].view;
-    b.images[peel_depth_binding] = gbuffers[0].colors[3].view;
+    b.images[peel_depth_binding] = o.layout == gbuffer_layout::compact ? gbuffers[0].depth.view : gbuffers[0].colors[3].view;
   }
   bindings common = forward ? base : per_layer[0];
   bindings layers_set = common;  // the k-buffer passes: the first G-buffer, the lists, the tail
@@ -529,7 +534,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   if (forward)
     for (std::size_t t = 0; t < lit.colors.size(); ++t) common.images[int(t)] = lit.colors[t].view;
   if (peeling) {
-    for (int t = 0; t < 4; ++t) common.images[gbuffer2_binding + t] = gbuffers[1].colors[std::size_t(t)].view;
+    bind_gbuffer(common, gbuffer2_binding, gbuffers[1]);
     common.images[light2_binding] = light_buffers[1].colors[0].view;
   }
 
@@ -601,8 +606,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       if (!set) return failure{set.error()};
       timed("gbuffer", [&](VkCommandBuffer cmd) {
         barrier(cmd);
-        dev.begin_rendering(cmd, gbuffers[std::size_t(k)],
-                            {glm::vec4(0, 0, 0, 1), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)});
+        dev.begin_rendering(cmd, gbuffers[std::size_t(k)], gbuffer_clears(o.layout));
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &*set, 0, nullptr);
         draw_scene(cmd, 0, m.hair_first);
@@ -835,8 +839,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       out.lit.push_back(*texels);
     }
   if (!forward) {
-    for (int t = 0; t < 4; ++t) {
-      auto texels = dev.read_texels(gbuffers[0], t);
+    for (std::size_t t = 0; t < gbuffers[0].colors.size(); ++t) {
+      auto texels = dev.read_texels(gbuffers[0], int(t));
       if (!texels) return failure{texels.error()};
       out.gbuffer.push_back(*texels);
     }
@@ -865,10 +869,11 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   for (int k = 0; k < layers; ++k) {
     const std::string suffix = k ? "_2" : "";
     const vk::targets *gb = &gbuffers[std::size_t(k)], *lb = &light_buffers[std::size_t(k)];
-    wanted.insert(wanted.end(), {{"diffuse" + suffix, gb, 0, format::rgba8, view_as::rgb},
-                                 {"normals" + suffix, gb, 1, format::rgb10a2, view_as::rgb},
-                                 {"depth" + suffix, gb, 3, format::r32f, view_as::depth},
-                                 {"light" + suffix, lb, 0, light_format, view_as::rgb},
+    wanted.push_back({"diffuse" + suffix, gb, 0, format::rgba8, view_as::rgb});
+    if (o.layout == gbuffer_layout::thesis)  // the compact layout's normals are octahedral, its depth an attachment
+      wanted.insert(wanted.end(), {{"normals" + suffix, gb, 1, format::rgb10a2, view_as::rgb},
+                                   {"depth" + suffix, gb, 3, format::r32f, view_as::depth}});
+    wanted.insert(wanted.end(), {{"light" + suffix, lb, 0, light_format, view_as::rgb},
                                  {"specular" + suffix, lb, 0, light_format, view_as::alpha}});
   }
   if (!post.passes.empty()) {

@@ -27,27 +27,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "detail/shared.hpp"
-
-DSTRANS_SHARED(dst_octahedral,
-DST_FN vec2 dst_octahedral_encode(vec3 n) {
-  float s = abs(n.x) + abs(n.y) + abs(n.z);
-  if (isnan(s) || isinf(s) || s <= 0.0f) return vec2(0.0f);
-  vec2 p = vec2(n.x, n.y) * (1.0f / s);
-  if (n.z >= 0.0f) return p;
-  return vec2((1.0f - abs(p.y)) * (p.x >= 0.0f ? 1.0f : -1.0f), (1.0f - abs(p.x)) * (p.y >= 0.0f ? 1.0f : -1.0f));
-}
-DST_FN vec3 dst_octahedral_decode(vec2 e) {
-  vec3 n = vec3(e.x, e.y, 1.0f - abs(e.x) - abs(e.y));
-  if (n.z < 0.0f) {
-    float x = (1.0f - abs(e.y)) * (e.x >= 0.0f ? 1.0f : -1.0f);
-    float y = (1.0f - abs(e.x)) * (e.y >= 0.0f ? 1.0f : -1.0f);
-    n.x = x;
-    n.y = y;
-  }
-  float len = length(n);
-  return len > 0.0f ? n / len : vec3(0.0f, 0.0f, 1.0f);
-}
-)
+#include "surface.hpp"
 
 DSTRANS_SHARED(dst_fragment_node,
 DST_FN uint dst_pack_tangent(vec3 tangent) { return packSnorm2x16(dst_octahedral_encode(tangent)); }

@@ -40,6 +40,10 @@ struct codec {
   ::dstrans::codec<T> { &::dstrans::text::block, #enc, #dec, &::dstrans::shader::enc, &::dstrans::shader::dec }
 
 inline constexpr codec<glm::vec3> normal_unorm = DSTRANS_CODEC(glm::vec3, dst_normal_unorm, dst_encode_normal, dst_decode_normal);
+// Two channels for a vec3: the CPU side is the field's own (field::normal_octahedral), so no function
+// pointers here.
+inline constexpr codec<glm::vec3> normal_octahedral_unorm{&text::dst_normal_octahedral_unorm, "dst_encode_normal_octahedral",
+                                                          "dst_decode_normal_octahedral", nullptr, nullptr};
 inline constexpr codec<float> spec_power_unorm =
     DSTRANS_CODEC(float, dst_spec_power_unorm, dst_encode_spec_power, dst_decode_spec_power);
 
@@ -96,6 +100,25 @@ struct alpha : detail::field_base<surface, float, &surface::alpha, 8> {
 struct normal : detail::field_base<surface, glm::vec3, &surface::normal, 8, &normal_unorm> {
   static constexpr const char* name = "normal";
   static constexpr const char* parts = "xyz";
+};
+// The normal in two channels, octahedrally (the compact layout); UNORM targets only, as a float target
+// would need the same two numbers unencoded, which no layout asks for yet.
+struct normal_octahedral {
+  using record = surface;
+  using value_type = glm::vec3;
+  static constexpr int channels = 2;
+  static constexpr int min_bits = 8;
+  static constexpr const codec<glm::vec3>* unorm = &normal_octahedral_unorm;
+  static constexpr const char* name = "normal";
+  static constexpr const char* parts = "uv";
+  static void store(const surface& r, glm::vec4& v, int offset, channel_kind) {
+    const glm::vec2 e = shader::dst_encode_normal_octahedral(r.normal);
+    v[offset] = e.x;
+    v[offset + 1] = e.y;
+  }
+  static void load(const glm::vec4& v, int offset, channel_kind, surface& r) {
+    r.normal = shader::dst_decode_normal_octahedral(glm::vec2(v[offset], v[offset + 1]));
+  }
 };
 struct spec_intensity : detail::field_base<surface, float, &surface::spec_intensity, 8> {
   static constexpr const char* name = "spec_intensity";
@@ -311,6 +334,9 @@ struct layout_options {
   side sides = side::both;
   int first_location = 0;  // the output location of target 0
   int first_binding = 0;   // the sampler binding of target 0
+  // For a layout without a depth field (compact_gbuffer): the binding of the depth attachment the read
+  // side takes depth from (-1: none, depth reads 0).
+  int depth_attachment_binding = -1;
 };
 
 namespace detail {
@@ -356,6 +382,7 @@ std::string layout_table(const std::string& name) {
 // and, as opt.sides asks,
 //   write side: outputs at opt.first_location..., void dst_NAME_store(int target, vec4 v), void dst_NAME_write(RECORD r)
 //   read side:  samplers at opt.first_binding..., vec4 dst_NAME_fetch(int target, ivec2 pixel), RECORD dst_NAME_read(ivec2 pixel)
+//               (with opt.depth_attachment_binding, a layout without depth reads it from that sampler)
 // An engine with its own bindings defines DSTRANS_NAME_STORE or DSTRANS_NAME_FETCH (NAME in capitals)
 // before this code and implements dst_NAME_store or dst_NAME_fetch itself.
 template <class L>
@@ -443,9 +470,15 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
       code += "  if (target == " + std::to_string(i) + ") return texelFetch(" + fn + "_tex" + std::to_string(i) +
               ", pixel, 0);\n";
     code += "  return texelFetch(" + fn + "_tex" + std::to_string(n - 1) + ", pixel, 0);\n}\n#endif\n";
-    code += rtype + " " + fn + "_read(ivec2 pixel) {\n  return " + fn + "_unpack(";
+    const bool attachment = opt.depth_attachment_binding >= 0 && !L::template stores<field::depth>();
+    if (attachment)
+      code += "layout(binding = " + std::to_string(opt.depth_attachment_binding) + ") uniform sampler2D " + fn +
+              "_depth_attachment;\n";
+    code += rtype + " " + fn + "_read(ivec2 pixel) {\n  " + rtype + " r = " + fn + "_unpack(";
     for (int i = 0; i < n; ++i) code += std::string(i ? ", " : "") + fn + "_fetch(" + std::to_string(i) + ", pixel)";
-    code += ");\n}\n";
+    code += ");\n";
+    if (attachment) code += "  r.depth = texelFetch(" + fn + "_depth_attachment, pixel, 0).r;\n";
+    code += "  return r;\n}\n";
   }
   src.add(code, __FILE__, __LINE__);
 }

@@ -62,7 +62,9 @@ struct pipeline_plan {
   }
 };
 
-template <class E>
+// E: the effect set; G: the G-buffer's layout (Table 3.1's, or compact_gbuffer with depth from the depth
+// attachment, which the plan does not count, as every renderer has one).
+template <class E, class G = thesis_gbuffer>
 struct pipeline {
   static constexpr effects set = E::value;
   static constexpr bool interlaced = set.has(effect::transparency);
@@ -71,7 +73,7 @@ struct pipeline {
   static constexpr bool has_shadow_colour = set.has(effect::transparent_shadows);
   static constexpr bool many_layers = set.has(effect::many_layers);
   static constexpr bool light_volumes = set.has(effect::light_volumes);
-  static constexpr int screen_bytes_per_pixel = thesis_gbuffer::bytes_per_pixel + thesis_light_buffer::bytes_per_pixel;
+  static constexpr int screen_bytes_per_pixel = G::bytes_per_pixel + thesis_light_buffer::bytes_per_pixel;
   static constexpr int shadow_bytes_per_texel = !has_shadows         ? 0
                                                 : has_shadow_colour ? thesis_shadow_map::bytes_per_pixel
                                                                     : info(format::r32f).bytes_per_pixel;
@@ -89,7 +91,13 @@ struct pipeline {
       }
       return names;
     };
-    const std::vector<std::string> gbuffer = add_targets(describe<thesis_gbuffer>(), "gbuffer", false);
+    const std::vector<std::string> gbuffer = add_targets(describe<G>(), "gbuffer", false);
+    // Where depth is read: the G-buffer's depth target, or the depth attachment.
+    std::string depth = "gbuffer.depth";
+    const std::vector<target_desc> described = describe<G>();
+    for (std::size_t i = 0; i < described.size(); ++i)
+      for (const std::string& c : described[i].channels)
+        if (c == "depth") depth = gbuffer[i];
     const std::vector<std::string> light = add_targets(describe<thesis_light_buffer>(), "light", false);
     std::vector<std::string> shadow;
     if constexpr (has_shadows) {
@@ -128,10 +136,10 @@ struct pipeline {
       std::vector<std::string> capture_writes = lists, resolve_reads = lists;
       capture_writes.insert(capture_writes.end(), tail.begin(), tail.end());
       resolve_reads.insert(resolve_reads.end(), tail.begin(), tail.end());
-      resolve_reads.push_back("gbuffer.RT3");
+      resolve_reads.push_back(depth);
       if (has_shadows) resolve_reads.push_back("shadow.depth");
       const std::vector<std::string> on{effect_switch(effect::many_layers)};
-      p.passes.push_back({"capture", {"gbuffer.RT3"}, capture_writes, on});
+      p.passes.push_back({"capture", {depth}, capture_writes, on});
       p.passes.push_back({"resolve", resolve_reads, {"output"}, on});
     }
     if constexpr (light_volumes) {
@@ -142,7 +150,7 @@ struct pipeline {
       p.targets.push_back({"volume.atlas", info(format::rgba32f).name, info(format::rgba32f).bytes_per_pixel, false, true});
       const std::vector<std::string> on{effect_switch(effect::light_volumes)};
       p.passes.push_back({"bake", shadow, {"volume.texels", "volume.atlas"}, on});
-      p.passes.push_back({"particles", {"volume.atlas", "gbuffer.RT3"}, {"output"}, on});
+      p.passes.push_back({"particles", {"volume.atlas", depth}, {"output"}, on});
     }
     for (const planned_target& t : p.targets)
       if (!t.shadow_map && !t.volume) p.bytes_per_pixel += t.bytes_per_pixel;
@@ -155,7 +163,7 @@ template <unsigned Bits>
 struct bits_set {
   static constexpr effects value{Bits};
 };
-template <unsigned Bits>
+template <unsigned Bits, class G>
 pipeline_plan plan_bits(unsigned bits) {
   if constexpr (Bits == effects::all().bits + 1u) {
     return {};
@@ -165,8 +173,8 @@ pipeline_plan plan_bits(unsigned bits) {
     constexpr effects e{Bits};
     if constexpr ((!e.has(effect::refraction) || e.has(effect::transparency)) &&
                   (!e.has(effect::transparent_shadows) || e.has(effect::shadows)))
-      if (bits == Bits) return pipeline<bits_set<Bits>>::plan();
-    return plan_bits<Bits + 1u>(bits);
+      if (bits == Bits) return pipeline<bits_set<Bits>, G>::plan();
+    return plan_bits<Bits + 1u, G>(bits);
   }
 }
 }  // namespace detail
@@ -179,7 +187,11 @@ constexpr effects completed(effects e) {
   return e;
 }
 
-// The plan for set `e` (completed), through the same pipeline<E>::plan() a compile-time caller uses.
-inline pipeline_plan plan_pipeline(effects e) { return detail::plan_bits<0u>(completed(e).bits); }
+// The plan for set `e` (completed) with G-buffer layout G, through the same pipeline<E, G>::plan() a
+// compile-time caller uses.
+template <class G = thesis_gbuffer>
+pipeline_plan plan_pipeline(effects e) {
+  return detail::plan_bits<0u, G>(completed(e).bits);
+}
 
 }  // namespace dstrans

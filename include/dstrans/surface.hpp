@@ -48,10 +48,37 @@ DST_FN dst_light_sample dst_light_sample_zero() {
 }
 )
 
-// A unit normal in a UNORM target: [-1, 1] maps to [0, 1].
+// A unit vector in two numbers of [-1, 1], octahedrally (Cigolle et al. 2014): the k-buffer's tangents and
+// the compact G-buffer's normals. A zero or non-finite vector encodes as (0, 0), which decodes to +Z.
+DSTRANS_SHARED(dst_octahedral,
+DST_FN vec2 dst_octahedral_encode(vec3 n) {
+  float s = abs(n.x) + abs(n.y) + abs(n.z);
+  if (isnan(s) || isinf(s) || s <= 0.0f) return vec2(0.0f);
+  vec2 p = vec2(n.x, n.y) * (1.0f / s);
+  if (n.z >= 0.0f) return p;
+  return vec2((1.0f - abs(p.y)) * (p.x >= 0.0f ? 1.0f : -1.0f), (1.0f - abs(p.x)) * (p.y >= 0.0f ? 1.0f : -1.0f));
+}
+DST_FN vec3 dst_octahedral_decode(vec2 e) {
+  vec3 n = vec3(e.x, e.y, 1.0f - abs(e.x) - abs(e.y));
+  if (n.z < 0.0f) {
+    float x = (1.0f - abs(e.y)) * (e.x >= 0.0f ? 1.0f : -1.0f);
+    float y = (1.0f - abs(e.x)) * (e.y >= 0.0f ? 1.0f : -1.0f);
+    n.x = x;
+    n.y = y;
+  }
+  float len = length(n);
+  return len > 0.0f ? n / len : vec3(0.0f, 0.0f, 1.0f);
+}
+)
+
+// A unit normal in a UNORM target: [-1, 1] maps to [0, 1]; in two UNORM channels, octahedrally.
 DSTRANS_SHARED(dst_normal_unorm,
 DST_FN vec3 dst_encode_normal(vec3 n) { return n * 0.5f + 0.5f; }
 DST_FN vec3 dst_decode_normal(vec3 e) { return e * 2.0f - 1.0f; }
+)
+DSTRANS_SHARED(dst_normal_octahedral_unorm,
+DST_FN vec2 dst_encode_normal_octahedral(vec3 n) { return dst_octahedral_encode(n) * 0.5f + 0.5f; }
+DST_FN vec3 dst_decode_normal_octahedral(vec2 e) { return dst_octahedral_decode(e * 2.0f - 1.0f); }
 )
 
 // A Phong exponent in a UNORM target: [0, 255] maps to [0, 1], so 8 bits keep every integer power.
