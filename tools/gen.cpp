@@ -22,7 +22,8 @@ const char* const usage =
     "       dstrans gen interlace <predicate>\n"
     "       dstrans gen pipeline <scene.json> [--out DIR]   every shader the scene's pipeline compiles; with\n"
     "                                       --out one file each (<pass>.vert, <pass>.frag), else all printed\n"
-    "layouts:    thesis (Table 3.1), light (Table 3.2), shadow (Table 3.3)\n"
+    "layouts:    thesis (Table 3.1), compact (8 bytes, depth from the attachment), light (Table 3.2),\n"
+    "            shadow (Table 3.3)\n"
     "predicates: rows (the thesis's), columns, checker, none\n";
 
 struct named_layout {
@@ -39,6 +40,7 @@ named_layout entry(const char* name) {
 const std::map<std::string, named_layout>& layouts() {
   static const std::map<std::string, named_layout> table{
       {"thesis", entry<thesis_gbuffer>("gbuffer")},
+      {"compact", entry<compact_gbuffer>("gbuffer")},
       {"light", entry<thesis_light_buffer>("light")},
       {"shadow", entry<thesis_shadow_map>("shadow")},
   };
