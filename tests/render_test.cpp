@@ -1301,3 +1301,21 @@ TEST_CASE("the compact layout's plan: 12 bytes a pixel with the light buffer, de
   o.layout = render::gbuffer_layout::thesis;
   CHECK(render::plan_of(s, o).pipeline.bytes_per_pixel == 20);
 }
+
+// Forcing shadows on smoke that no light shadows changes nothing, the forward reference included (its
+// particle pass then reads no shadow maps, as none is drawn).
+TEST_CASE("forced shadows without a shadowed light leave the smoke as it is, on GL and Vulkan", "[light_volume][render]") {
+  scene s = testing::effect_scene(testing::rung::particles);
+  for (light& l : s.lights) l.shadows = false;
+  for (backend b : backends)
+    for (options::particle_light p : {options::particle_light::six_axes, options::particle_light::forward}) {
+      options o = small(160, 90);
+      o.particles = p;
+      auto plain = draw(b, s, o);
+      o.force = effects{}.with(effect::shadows);
+      auto forced = draw(b, s, o);
+      if (!plain || !forced) continue;
+      INFO(name(b) << ", " << render::particle_light_name(p));
+      CHECK(rmse(plain->final_image, forced->final_image) == 0.0);
+    }
+}

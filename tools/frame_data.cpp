@@ -88,6 +88,7 @@ particle_plan particle_plan_of(const scene& s, const frame_plan& p, const option
   for (std::size_t i = 0; i < s.lights.size(); ++i)
     if (p.lookups[i] != shadow_mode::off) out.shadowed_lights.push_back(i);
     else out.unshadowed_lights.push_back(volume_light_of(s.lights[i], i));
+  out.shadows = out.shadowed_lights.empty() ? shadow_mode::off : p.shadows;
   return out;
 }
 

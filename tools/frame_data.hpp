@@ -174,6 +174,7 @@ std::vector<particle_region> particle_regions(const scene& s, const volume_atlas
 // baked together.
 struct particle_plan {
   bool on = false, reference = false, baking = false;
+  shadow_mode shadows = shadow_mode::off;  // the maps the particle pass and the bake read: none without a shadowed light
   volume_atlas atlas;
   std::vector<std::size_t> shadowed_lights;
   std::vector<volume_light> unshadowed_lights;

@@ -141,7 +141,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       r.programs.push_back(*prog);
       (shadowed ? bake_shadowed_prog : bake_prog) = *prog;
     }
-    auto p = r.program(particle_pass(shader_dir, mode, o), "particle pass");
+    auto p = r.program(particle_pass(shader_dir, smoke.shadows, o), "particle pass");
     if (!p) return failure{p.error()};
     particle_prog = *p;
   }

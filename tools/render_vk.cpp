@@ -369,7 +369,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       bake_shaders[shadowed] = *sh;
       bake_pipes[shadowed] = *p;
     }
-    particle_shaders = compile(dev, particle_pass(shader_dir, mode, o), "particle pass");
+    particle_shaders = compile(dev, particle_pass(shader_dir, smoke.shadows, o), "particle pass");
     if (!particle_shaders) return failure{particle_shaders.error()};
     vk::pipeline_state st;
     st.transmit = true;  // colour premultiplied, and in alpha what the frame behind keeps
