@@ -930,10 +930,11 @@ TEST_CASE("the renderer bakes the CPU's atlas, and a shadowed spot light's dispa
       o.shadows = shadows ? render::shadow_mode::transparent : render::shadow_mode::off;
       auto f = draw(b, s, o);
       if (!f) continue;
-      const volume_atlas atlas = render::particle_atlas(s, o);
-      std::vector<volume_light> lights;
-      for (std::size_t i = 0; i < s.lights.size(); ++i) lights.push_back(render::volume_light_of(s.lights[i], i));
-      const std::vector<glm::vec4> cpu = bake_light_volume(atlas, render::particle_basis(o), lights);
+      // Every light as the bake reads it, the shadowed ones without their shadows.
+      const render::particle_plan smoke = render::particle_plan_of(s, render::plan_of(s, o), o);
+      std::vector<volume_light> lights = smoke.unshadowed_lights;
+      lights.insert(lights.end(), smoke.shadowed_lights.begin(), smoke.shadowed_lights.end());
+      const std::vector<glm::vec4> cpu = bake_light_volume(smoke.atlas, render::particle_basis(o), lights);
       REQUIRE(f->volume_texels.size() == cpu.size());
       std::size_t darker = 0, brighter = 0, same = 0;
       for (std::size_t i = 0; i < cpu.size(); ++i) {

@@ -59,16 +59,6 @@ volume_atlas particle_atlas(const scene& s, const options& o) {
   return pack_volumes(grids, int(particle_basis(o).axes.size()));
 }
 
-volume_light volume_light_of(const light& l, std::size_t index) {
-  volume_light v;
-  const float kind = l.kind == light_kind::directional ? 0.0f : l.kind == light_kind::point ? 1.0f : 2.0f;
-  v.position_kind = glm::vec4(l.position, kind);
-  v.direction_range = glm::vec4(l.direction, l.range);
-  v.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
-  v.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), float(index), 0.0f, 0.0f);
-  return v;
-}
-
 std::vector<particle_region> particle_regions(const scene& s, const volume_atlas& a) {
   std::vector<particle_region> out;
   for (std::size_t r = 0; r < a.regions.size() && r < s.particles.size(); ++r) {
@@ -85,9 +75,14 @@ particle_plan particle_plan_of(const scene& s, const frame_plan& p, const option
   out.reference = out.on && o.particles == options::particle_light::forward;
   out.baking = out.on && !out.reference;
   out.atlas = particle_atlas(s, o);
-  for (std::size_t i = 0; i < s.lights.size(); ++i)
-    if (p.lookups[i] != shadow_mode::off) out.shadowed_lights.push_back(i);
-    else out.unshadowed_lights.push_back(volume_light_of(s.lights[i], i));
+  const std::vector<light_block> blocks = light_blocks(s, o);
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const light_block& b = blocks[i];
+    const volume_light v{glm::vec4(glm::vec3(b.position_range), b.direction_kind.w),
+                         glm::vec4(glm::vec3(b.direction_kind), b.position_range.w), b.colour_cos_outer,
+                         glm::vec4(b.cos_inner.x, float(i), 0.0f, 0.0f)};
+    (p.lookups[i] != shadow_mode::off ? out.shadowed_lights : out.unshadowed_lights).push_back(v);
+  }
   out.shadows = out.shadowed_lights.empty() ? shadow_mode::off : p.shadows;
   return out;
 }

@@ -156,11 +156,10 @@ frame_block light_frame(const scene& s, const light& l, const options& o);
 std::vector<material_block> material_blocks(const scene& s);
 std::vector<light_block> light_blocks(const scene& s, const options& o);
 // Light volumes: the basis the options pick, the atlas of the scene's particle systems (a region of
-// options::volume_cells cells a side over each system's bounds), a light as the bake reads it (its index
-// in s.lights in cos_inner.y, for the shadow hook), and each system's region as the particle pass reads it.
+// options::volume_cells cells a side over each system's bounds), and each system's region as the particle
+// pass reads it.
 basis particle_basis(const options& o);
 volume_atlas particle_atlas(const scene& s, const options& o);
-volume_light volume_light_of(const light& l, std::size_t index);
 struct particle_region {
   glm::vec4 origin_material;  // the region's first cell corner; w: the system's material
   glm::vec4 scale_slab;       // a cell's size; w: the atlas's slab height
@@ -169,15 +168,15 @@ struct particle_region {
 };
 std::vector<particle_region> particle_regions(const scene& s, const volume_atlas& a);
 // What a frame does for particle systems (both backends): whether it draws them (deferred techniques),
-// by the forward reference or from baked volumes; the atlas; the shadowed lights, each baked in its own
-// dispatch (in light order, which is also the order of the reference's shadow-map layers); the rest,
-// baked together.
+// by the forward reference or from baked volumes; the atlas; the lights as the bake reads them (from
+// their light blocks, their index in s.lights in cos_inner.y for the shadow hook): the shadowed ones, each
+// baked in its own dispatch (in light order, which is also the order of the reference's shadow-map
+// layers), and the rest, baked together.
 struct particle_plan {
   bool on = false, reference = false, baking = false;
   shadow_mode shadows = shadow_mode::off;  // the maps the particle pass and the bake read: none without a shadowed light
   volume_atlas atlas;
-  std::vector<std::size_t> shadowed_lights;
-  std::vector<volume_light> unshadowed_lights;
+  std::vector<volume_light> shadowed_lights, unshadowed_lights;
 };
 particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o);
 

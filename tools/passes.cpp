@@ -246,7 +246,7 @@ result<glsl::source> bake_pass(const std::string& dir, shadow_mode shadows, cons
     add_shadow_layout(src, shadows, glsl::side::read);
     if (shadows == shadow_mode::transparent) glsl::add_interlace<I>(src);
     if (auto ok = finish(src, dir, {"lighting.glsl"}, shadow_switches(shadows)); !ok) return failure{ok.error()};
-    // The light's own entry in the frame's lights holds its shadow map's matrix (volume_light_of).
+    // The light's own entry in the frame's lights holds its shadow map's matrix (particle_plan's lights).
     hook = "vec3 dst_volume_shadow(dst_volume_light l, vec3 p, vec3 light) {\n"
            "  return dst_shadowed(light, p, lights[int(l.cos_inner.y + 0.5f)]);\n"
            "}\n";

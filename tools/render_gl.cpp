@@ -128,7 +128,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   const particle_plan smoke = particle_plan_of(s, plan, o);
   const bool particles = smoke.on, particle_reference = smoke.reference, baking = smoke.baking;
   const volume_atlas& atlas = smoke.atlas;
-  const std::vector<std::size_t>& shadowed_lights = smoke.shadowed_lights;
+  const std::vector<volume_light>& shadowed_lights = smoke.shadowed_lights;
   const std::vector<volume_light>& unshadowed_lights = smoke.unshadowed_lights;
   GLuint bake_prog = 0, bake_shadowed_prog = 0, particle_prog = 0;
   if (particles) {
@@ -266,8 +266,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       for (std::size_t k = 0; k < atlas.regions.size(); ++k)
         region_blocks.push_back(r.buffer(std::vector<volume_bake_block>{bake_block(atlas, k)}, "volume region " + std::to_string(k)));
       unshadowed_buffer = r.buffer(unshadowed_lights, "volume lights");
-      for (std::size_t i : shadowed_lights)
-        shadowed_buffers.push_back(r.buffer(std::vector<volume_light>{volume_light_of(s.lights[i], i)}, "volume light " + std::to_string(i)));
+      for (const volume_light& l : shadowed_lights)
+        shadowed_buffers.push_back(r.buffer(std::vector<volume_light>{l}, "volume light " + std::to_string(int(l.cos_inner.y))));
       glCreateTextures(GL_TEXTURE_3D, 1, &atlas_texture);
       r.textures.push_back(atlas_texture);
       glTextureStorage3D(atlas_texture, 1, GL_RGBA32F, atlas_size.x, atlas_size.y, atlas_size.z);

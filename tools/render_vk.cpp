@@ -347,7 +347,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   const particle_plan smoke = particle_plan_of(s, plan, o);
   const bool particles = smoke.on, particle_reference = smoke.reference, baking = smoke.baking;
   const volume_atlas& atlas = smoke.atlas;
-  const std::vector<std::size_t>& shadowed_lights = smoke.shadowed_lights;
+  const std::vector<volume_light>& shadowed_lights = smoke.shadowed_lights;
   const std::vector<volume_light>& unshadowed_lights = smoke.unshadowed_lights;
   const vk::shader* bake_shaders[2] = {};
   vk::pipeline bake_pipes[2]{}, particle_pipe;
@@ -462,9 +462,9 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     for (std::size_t k = 0; k < atlas.regions.size(); ++k)
       made.push_back(r.buffer(std::vector<volume_bake_block>{bake_block(atlas, k)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                               "volume region " + std::to_string(k)));
-    for (std::size_t i : shadowed_lights)
-      made.push_back(r.buffer(std::vector<volume_light>{volume_light_of(s.lights[i], i)}, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                              "volume light " + std::to_string(i)));
+    for (const volume_light& l : shadowed_lights)
+      made.push_back(r.buffer(std::vector<volume_light>{l}, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              "volume light " + std::to_string(int(l.cos_inner.y))));
   }
   const std::size_t post_first = made.size();
   for (const post_pass& pass : post.passes)

@@ -57,7 +57,6 @@ struct volume_grid {
   glm::vec4 origin{0.0f};
   glm::vec4 scale{1.0f};
   glm::ivec4 dims{1};
-  std::size_t cells() const { return std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z); }
 };
 
 // A light as the bake reads it (std430): position and kind (0 directional, 1 point, 2 spot), direction and

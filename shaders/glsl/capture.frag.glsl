@@ -16,7 +16,7 @@ void main() {
   vec4 colour_alpha = vec4(m.diffuse_alpha.xyz, alpha);
   optical_depth = -log(max(1.0f - alpha, 1.0f / 1024.0f));
 #ifdef DST_LAYERS_WBOIT
-  vec3 lit = dst_hair_lit(dst_world_at(p, gl_FragCoord.z), tangent, colour_alpha, true);
+  vec3 lit = dst_hair_lit(dst_world_position(p, gl_FragCoord.z), tangent, colour_alpha, true);
   tail = dst_tail_add(vec4(0.0f), vec4(lit, alpha)) * dst_wboit_weight(alpha, gl_FragCoord.z);
   return;
 #endif
@@ -29,6 +29,6 @@ void main() {
     return;
   }
   atomicAdd(kbuffer.overflow, 1u);
-  vec3 shaded = dst_hair_lit(dst_world_at(p, gl_FragCoord.z), tangent, colour_alpha, false);
+  vec3 shaded = dst_hair_lit(dst_world_position(p, gl_FragCoord.z), tangent, colour_alpha, false);
   tail = dst_tail_add(vec4(0.0f), vec4(shaded, alpha));
 }

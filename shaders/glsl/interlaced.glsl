@@ -4,18 +4,8 @@
 // (dst_layer_similarity and dst_reconstruct, interlace.hpp).
 #ifdef DST_RECONSTRUCT
 // The other layer's samples around `pixel` besides its partner (up to three: the 4-neighbours the
-// predicate puts in the other layer), and how surely each shows the partner's surface; kept for the
-// pixel's second call (dst_other, then dst_other_light), which would read the same texels again.
-ivec2 dst_around_pixel = ivec2(-1);
-ivec2 dst_around_at[3];
-vec3 dst_around_weights;
-
+// predicate puts in the other layer), and how surely each shows the partner's surface.
 void dst_other_around(ivec2 pixel, out ivec2 at[3], out vec3 weights) {
-  if (pixel == dst_around_pixel) {
-    at = dst_around_at;
-    weights = dst_around_weights;
-    return;
-  }
   ivec2 size = frame.size.xy;
   ivec2 partner = dst_interlace_partner(pixel, size);
   dst_surface p = dst_gbuffer_read(partner);
@@ -36,9 +26,6 @@ void dst_other_around(ivec2 pixel, out ivec2 at[3], out vec3 weights) {
     weights[n] = dst_layer_similarity(p.depth, p.normal, p.alpha, s.depth, s.normal, s.alpha);
     ++n;
   }
-  dst_around_pixel = pixel;
-  dst_around_at = at;
-  dst_around_weights = weights;
 }
 
 dst_surface dst_other(ivec2 pixel) {

@@ -11,11 +11,6 @@ layout(std430, binding = 23) coherent buffer dst_kbuffer {
 } kbuffer;
 const uint dst_no_node = 0xffffffffu;
 
-vec3 dst_world_at(ivec2 pixel, float depth) {
-  vec4 h = frame.inv_view_proj * vec4(dst_pixel_ndc(pixel, frame.size.xy), depth, 1.0f);
-  return h.xyz / h.w;
-}
-
 #ifdef DST_SHADOWS
 // Eq. 1: the share of light that reaches `world` through the hair in front of it, from Gaussian taps of
 // the shadow map (radius 2: 25 taps; radius 0: the centre), 50 strands a unit of distance behind the

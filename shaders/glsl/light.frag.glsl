@@ -1,11 +1,6 @@
 // The light pass (thesis 3.2): additive blending, each pixel lit as the surface its G-buffer row holds.
 layout(location = 0) flat in uint light_id;
 
-vec3 dst_world_position(ivec2 pixel, float depth) {
-  vec4 h = frame.inv_view_proj * vec4(dst_pixel_ndc(pixel, frame.size.xy), depth, 1.0f);
-  return h.xyz / h.w;
-}
-
 void main() {
   ivec2 pixel = dst_pixel();
   dst_surface s = dst_gbuffer_read(pixel);

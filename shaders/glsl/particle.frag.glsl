@@ -48,9 +48,8 @@ void main() {
   float r2 = dot(corner, corner);
   if (r2 >= 1.0f) discard;
   ivec2 pixel = dst_pixel();
-  vec4 behind_h = frame.inv_view_proj * vec4(dst_pixel_ndc(pixel, frame.size.xy), dst_gbuffer_read(pixel).depth, 1.0f);
   vec3 eye = frame.camera_position.xyz;
-  float gap = distance(behind_h.xyz / behind_h.w, eye) - distance(world, eye);
+  float gap = distance(dst_world_position(pixel, dst_gbuffer_read(pixel).depth), eye) - distance(world, eye);
   if (!(gap > 0.0f)) discard;
   dst_particle_region region = regions[particle_system];
   dst_material_data m = materials[uint(region.origin_material.w + 0.5f)];

@@ -7,8 +7,5 @@ layout(location = 0) out vec4 dst_post_colour;
 ivec2 dst_post_clamp(ivec2 p) { return clamp(p, ivec2(0), frame.size.xy - 1); }
 vec4 dst_post_fetch0(ivec2 p) { return texelFetch(dst_post_in0, dst_post_clamp(p), 0); }
 
-// The distance from the camera to what the G-buffer holds at p (its depth through the inverse projection).
-float dst_post_distance(ivec2 p, float depth) {
-  vec4 h = frame.inv_view_proj * vec4(dst_pixel_ndc(p, frame.size.xy), depth, 1.0f);
-  return distance(h.xyz / h.w, frame.camera_position.xyz);
-}
+// The distance from the camera to what the G-buffer holds at p.
+float dst_post_distance(ivec2 p, float depth) { return distance(dst_world_position(p, depth), frame.camera_position.xyz); }

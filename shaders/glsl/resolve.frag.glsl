@@ -14,7 +14,7 @@ bool dst_nearer(uvec4 a, uvec4 b) {  // depths are positive floats: their bits o
 }
 
 vec3 dst_shade_node(ivec2 p, uvec4 node, bool full) {
-  return dst_hair_lit(dst_world_at(p, uintBitsToFloat(node.x)), dst_unpack_tangent(node.y), dst_unpack_colour(node.z), full);
+  return dst_hair_lit(dst_world_position(p, uintBitsToFloat(node.x)), dst_unpack_tangent(node.y), dst_unpack_colour(node.z), full);
 }
 
 void main() {
