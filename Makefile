@@ -1,7 +1,8 @@
 # The README's two commands. Both install the Debian packages dstrans needs when some are missing
-# (apt-get update only then), configure once, build incrementally, then do their job.
-#   make demo       renders glass_room on OpenGL and Vulkan into out/demo/, with every buffer
-#   make test       builds and runs every test (ctest) in build/, then again under the sanitizers
+# (apt-get update only then), configure, build incrementally, then do their job.
+#   make demo       builds the dstrans command alone and renders glass_room on OpenGL and Vulkan into out/demo/
+#   make test       builds and runs every test (ctest) in build/, then again under the sanitizers, and checks
+#                   that every Debian package the build found is one this Makefile installs
 #   make sanitize   the suite alone under AddressSanitizer, LeakSanitizer and UBSan, in build-sanitize/
 
 BUILD ?= build
@@ -9,57 +10,75 @@ SANITIZE_BUILD ?= build-sanitize
 OUT ?= out/demo
 JOBS ?= $(shell nproc)
 
-# Debian 12 packages: compiler and build, the core's GLM, glslang and SPIRV-Cross for shader checks,
-# Catch2 for the tests; ccache keeps rebuilds cheap.
+# Debian 12 packages: compiler and build, the core's GLM, glslang, SPIRV-Tools and SPIRV-Cross (with its CMake
+# packages) for shaders, Catch2 for the tests; ccache keeps rebuilds cheap.
 # GL through EGL and Vulkan on Mesa (llvmpipe, lavapipe) with the Khronos validation layer, and
 # nlohmann-json for the command line, stb for PNG files, matplotlib for the benchmark's plot, GLFW and
-# Xvfb for the viewer and its test.
-PACKAGES := g++ make cmake ccache libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross catch2 \
-            libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri mesa-vulkan-drivers libvulkan-dev \
+# Xvfb for the viewer and its test. `make test` fails when CMake finds a package this list does not install.
+PACKAGES := g++ make cmake ccache libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross \
+            libspirv-cross-c-shared-dev catch2 \
+            libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri mesa-vulkan-drivers libvulkan-dev \
             vulkan-validationlayers nlohmann-json3-dev libstb-dev python3-matplotlib libglfw3-dev xvfb xauth
 
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
-LAUNCHER = $$(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+CMAKE_FLAGS = $$(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 SANITIZE_ENV := ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
                 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers.supp:print_suppressions=0
 
-.PHONY: demo test sanitize deps configure build clean
+# Configuring runs every time: CMake is idempotent and fast when nothing changed, and a configure that failed
+# or was interrupted (which still leaves a CMakeCache.txt) is simply done again. Its output goes to a log that
+# is shown when it fails.
+configure_in = @mkdir -p $(1) && cmake -S . -B $(1) $(2) $(CMAKE_FLAGS) > $(1)/configure.log 2>&1 \
+               || { cat $(1)/configure.log; echo "make: configuring $(1) failed (log: $(1)/configure.log)"; exit 1; }
+
+.PHONY: demo test sanitize deps configure build check-packages print-packages clean
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
-	  echo "Installing Debian packages: $$missing"; \
+	  echo "Installing Debian packages:" $$missing; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
 	fi
 
-$(BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(LAUNCHER)
+configure: deps
+	@echo "Configuring $(BUILD)/ (cmake)"
+	$(call configure_in,$(BUILD),-DCMAKE_BUILD_TYPE=RelWithDebInfo)
 
-$(SANITIZE_BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Debug -DDSTRANS_SANITIZE=ON $(LAUNCHER)
-
-configure: $(BUILD)/CMakeCache.txt
-
-build: deps configure
+build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-test: build
+test: build check-packages
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 	$(MAKE) --no-print-directory sanitize
 
-sanitize: deps $(SANITIZE_BUILD)/CMakeCache.txt
+sanitize: deps
+	@echo "Configuring $(SANITIZE_BUILD)/ (cmake, sanitizers)"
+	$(call configure_in,$(SANITIZE_BUILD),-DCMAKE_BUILD_TYPE=Debug -DDSTRANS_SANITIZE=ON)
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	$(SANITIZE_ENV) ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
 
-demo: build
-	$(BUILD)/tools/dstrans render examples/scenes/glass_room.json --backend gl --out $(OUT) --width 960 --height 540
-	$(BUILD)/tools/dstrans render examples/scenes/glass_room.json --backend vk --out $(OUT)/vk --width 960 --height 540
+# Every package configuration, library and program CMake found belongs to a package of PACKAGES or one of
+# their dependencies; otherwise a fresh machine stops at configure.
+check-packages: configure
+	@tests/check_packages.sh $$(find $(BUILD) $(SANITIZE_BUILD) -name CMakeCache.txt 2>/dev/null) -- $(PACKAGES)
+
+print-packages:
+	@echo $(PACKAGES)
+
+demo: configure
+	@echo "Building the dstrans command ($(BUILD)/tools/dstrans)"
+	@cmake --build $(BUILD) --target dstrans_cli -j $(JOBS)
+	@echo "Rendering examples/scenes/glass_room.json on OpenGL (llvmpipe) into $(OUT)/"
+	@$(BUILD)/tools/dstrans render examples/scenes/glass_room.json --backend gl --out $(OUT) --width 960 --height 540
+	@echo "Rendering it on Vulkan (lavapipe) into $(OUT)/vk/"
+	@$(BUILD)/tools/dstrans render examples/scenes/glass_room.json --backend vk --out $(OUT)/vk --width 960 --height 540
+	@echo "Writing the generated GLSL into $(OUT)/glsl/ and checking it with glslangValidator"
 	@mkdir -p $(OUT)/glsl
-	$(BUILD)/tools/dstrans gen gbuffer thesis > $(OUT)/glsl/gbuffer_thesis.glsl
-	$(BUILD)/tools/dstrans gen gbuffer light > $(OUT)/glsl/light_buffer.glsl
-	$(BUILD)/tools/dstrans gen gbuffer shadow > $(OUT)/glsl/shadow_map.glsl
-	$(BUILD)/tools/dstrans gen interlace rows > $(OUT)/glsl/interlace_rows.glsl
+	@$(BUILD)/tools/dstrans gen gbuffer thesis > $(OUT)/glsl/gbuffer_thesis.glsl
+	@$(BUILD)/tools/dstrans gen gbuffer light > $(OUT)/glsl/light_buffer.glsl
+	@$(BUILD)/tools/dstrans gen gbuffer shadow > $(OUT)/glsl/shadow_map.glsl
+	@$(BUILD)/tools/dstrans gen interlace rows > $(OUT)/glsl/interlace_rows.glsl
 	@for f in $(OUT)/glsl/*.glsl; do glslangValidator -S frag $$f >/dev/null || { echo "glslangValidator rejects $$f"; exit 1; }; done
 	@echo "make demo: $(OUT)/final.png (OpenGL) and $(OUT)/vk/final.png (Vulkan) with their buffers, and the generated GLSL in $(OUT)/glsl/"
 
