@@ -10,6 +10,8 @@ render thesis
 render no_refraction --refraction 0
 render opaque_shadows --shadows opaque
 render peeling --technique peeling
+"$tool" render examples/scenes/glass_room.json --backend gl --width 960 --height 540 --out "$work/demo" >/dev/null
+cp "$work/demo/final.png" docs/images/demo_final.png
 cp "$work/thesis/final.png" docs/images/final.png
 cp "$work/thesis/diffuse.png" docs/images/gbuffer_diffuse.png
 cp "$work/thesis/light.png" docs/images/light_buffer.png
