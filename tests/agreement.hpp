@@ -24,19 +24,47 @@
 
 namespace dstrans::testing {
 
-// Packed arguments for `calls` calls of f: the first 16 calls take their scalars from edge lists
+// The number of float scalars (vector components and record fields included) in one call of f.
+inline std::size_t float_scalars(const formula& f) {
+  std::function<std::size_t(const value_type&)> count = [&](const value_type& t) -> std::size_t {
+    if (t.kind == value_kind::record) {
+      std::size_t n = 0;
+      for (const auto& fld : t.fields) n += count(fld.second);
+      return n;
+    }
+    return t.is_float() ? std::size_t(t.word_count()) : 0u;
+  };
+  std::size_t n = 0;
+  for (const auto& a : f.args) n += count(a.second);
+  return n;
+}
+
+// How many calls random_args gives NaN or an infinity in one float scalar alone: three a scalar.
+inline std::size_t special_calls(const formula& f) { return 3 * float_scalars(f); }
+
+// Packed arguments for `calls` calls of f: the first `edge_calls` calls take their scalars from edge lists
 // (0, -0, 1, -1, 0.5, 255, tiny, huge, infinities, NaN; 0, 1, -1, 2, 7, 8, INT_MAX, INT_MIN), rotating
-// so that each argument meets each edge value; the rest are random within each argument's domain
-// (formula::domains: floats in [lo, hi] or unit vectors; ints in [-2, 64]).
-inline words random_args(const formula& f, std::size_t calls, std::uint32_t seed, std::size_t edge_calls = 16) {
+// so that each argument meets each edge value; with `specials`, the next special_calls(f) put NaN, +inf and
+// -inf in each float scalar (every vector component, every record field) in turn, the others random
+// within their domains, so that every NaN and infinity a formula can meet alone is met; the rest are
+// random within each argument's domain (formula::domains: floats in [lo, hi] or unit vectors; ints in
+// [-2, 64]).
+inline words random_args(const formula& f, std::size_t calls, std::uint32_t seed, std::size_t edge_calls = 16,
+                         bool specials = true) {
   static const float float_edges[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 255.0f, 1e-7f, 1e7f, INFINITY, -INFINITY, NAN};
+  static const float special_values[] = {NAN, INFINITY, -INFINITY};
   static const int int_edges[] = {0, 1, -1, 2, 7, 8, 2147483647, -2147483647 - 1};
+  const std::size_t special_end = edge_calls + (specials ? special_calls(f) : 0u);
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> small(-2, 64);
   words out;
   for (std::size_t call = 0; call < calls; ++call) {
     const bool edge = call < edge_calls;
+    const bool special = !edge && call < special_end;
+    const std::size_t special_slot = special ? (call - edge_calls) / 3 : ~std::size_t(0);
+    const float special_value = special ? special_values[(call - edge_calls) % 3] : 0.0f;
     std::size_t scalar = 0;  // the scalar's position within this call
+    std::size_t float_slot = 0;  // the float scalar's position within this call
     input_range range;
     std::function<void(const value_type&)> gen = [&](const value_type& t) {
       if (t.kind == value_kind::record) {
@@ -48,7 +76,10 @@ inline words random_args(const formula& f, std::size_t calls, std::uint32_t seed
         glm::vec3 v;
         do v = {real(rng), real(rng), real(rng)};
         while (glm::dot(v, v) < 1e-4f || glm::dot(v, v) > 1.0f);
-        put(glm::normalize(v), out);
+        v = glm::normalize(v);
+        for (int k = 0; k < 3; ++k, ++float_slot)
+          if (float_slot == special_slot) v[k] = special_value;
+        put(v, out);
         scalar += 3;
         return;
       }
@@ -58,7 +89,10 @@ inline words random_args(const formula& f, std::size_t calls, std::uint32_t seed
           case value_kind::int_: case value_kind::ivec2: put(edge ? int_edges[e % 8] : small(rng), out); break;
           case value_kind::uint_: put(edge ? unsigned(int_edges[e % 8]) : unsigned(rng()), out); break;
           case value_kind::bool_: put(edge ? (e & 1u) != 0u : (rng() & 1u) != 0u, out); break;
-          default: put(edge ? float_edges[e % 11] : real(rng), out);
+          default: {
+            const float x = edge ? float_edges[e % 11] : real(rng);
+            put(float_slot++ == special_slot ? special_value : x, out);
+          }
         }
       }
     };
@@ -163,7 +197,7 @@ template <class Run>
 void check_every_property(Run&& run) {
   for (const formula& f : formulas()) {
     const std::size_t calls = 100000;
-    const words args = random_args(f, calls, 6u, 0);
+    const words args = random_args(f, calls, 6u, 0, false);
     const auto results = run(f, args, calls);
     INFO(f.name);
     REQUIRE(results);

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <functional>
+#include <iterator>
 #include <random>
 
 #include <dstrans/dstrans.hpp>
@@ -14,7 +15,8 @@ namespace dstrans::testing {
 
 using gpu_runner = std::function<result<words>(const formula&, const words&, std::size_t)>;
 
-// Every formula, 10,000 calls (16 edge calls, then random), on the GPU and the CPU: they agree.
+// Every formula, 10,000 calls (16 edge calls, NaN and infinities in each float scalar alone, then random), on
+// the GPU and the CPU: they agree.
 inline void check_every_formula(const gpu_runner& gpu) {
   for (const formula& f : formulas()) {
     const std::size_t calls = 10000;
@@ -38,8 +40,13 @@ inline void check_every_formula(const gpu_runner& gpu) {
   }
 }
 
+// Alphas at the edges of "transparent": just below 1 (which rounding alone would store as opaque) and
+// just above 0, then 1.
+inline constexpr float boundary_alphas[] = {1.0f - 0x1p-24f, 0.999f, 254.5f / 255.0f, 1.0f / 255.0f, 0.5f / 255.0f, 0.0f, 1.0f};
+
 // The surfaces a G-buffer test writes, one a pixel: random, plus rows of hard values (exact UNORM
-// ties, values a float rounding away from a tie, out of range, NaN, axis normals, every integer power).
+// ties, values a float rounding away from a tie, out of range, NaN, axis normals, boundary alphas, every
+// integer power).
 inline std::vector<surface> test_surfaces(int width, int height) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f), sym(-1.0f, 1.0f);
@@ -59,6 +66,7 @@ inline std::vector<surface> test_surfaces(int width, int height) {
       case 2: s.normal = glm::vec3(0.0f, 0.0f, k % 2 ? 1.0f : -1.0f); break;  // 511.5: an exact tie
       case 3: s.diffuse = {-0.5f, 1.5f, 1.0f}; s.spec_intensity = 2.0f; break;
       case 4: s.diffuse = {NAN, 0.5f, 70000.0f}; s.alpha = -NAN; s.depth = NAN; break;
+      case 5: s.alpha = boundary_alphas[std::size_t(k) % std::size(boundary_alphas)]; break;  // just below 1 and 0
       default: break;
     }
     out.push_back(s);

@@ -1,6 +1,9 @@
 // Layout facts (Tables 3.1-3.3), CPU pack/unpack and write/read, and the layout description.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 #include <dstrans/gbuffer.hpp>
 
 using namespace dstrans;
@@ -142,4 +145,21 @@ TEST_CASE("the compact layout keeps every field, its normal within 1 degree, thr
   CHECK(a.spec_intensity == b.spec_intensity);
   CHECK(a.spec_power == b.spec_power);
   CHECK(a.depth == 0.0f);  // not stored: read from the depth attachment
+}
+
+TEST_CASE("an alpha below 1 stays transparent and 1 stays opaque through every layout that stores alpha", "[layout][alpha]") {
+  const float alphas[] = {1.0f - 0x1p-24f, 0.999f, 254.5f / 255.0f, 1.0f / 255.0f, 0.5f / 255.0f, 0.0f, 1.0f, 1.5f, NAN};
+  for (float a : alphas) {
+    surface s = shader::dst_surface_zero();
+    s.alpha = a;
+    const bool transparent = a < 1.0f;  // NaN is not below 1: opaque
+    INFO("alpha " << a);
+    CHECK(shader::dst_transparent(read<thesis_gbuffer>(write<thesis_gbuffer>(s)).alpha) == transparent);
+    CHECK(shader::dst_transparent(read<compact_gbuffer>(write<compact_gbuffer>(s)).alpha) == transparent);
+    CHECK(shader::dst_transparent(read<thesis_shadow_map>(write<thesis_shadow_map>(s)).alpha) == transparent);
+    // The RGBA8 code: 255 only for opaque, and transparent ones keep their nearest code up to 254.
+    const int code = write<thesis_gbuffer>(s)[0][3];
+    CHECK((code == 255) == !transparent);
+    if (transparent) CHECK(std::abs(float(code) - std::min(254.0f, a * 255.0f)) <= 0.5f + 1e-4f);
+  }
 }

@@ -3,6 +3,7 @@
 // A backend that is missing here is skipped with a message; Vulkan runs under the validation layer.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -1319,4 +1320,145 @@ TEST_CASE("forced shadows without a shadowed light leave the smoke as it is, on 
       INFO(name(b) << ", " << render::particle_light_name(p));
       CHECK(rmse(plain->final_image, forced->final_image) == 0.0);
     }
+}
+
+namespace {
+// Whether two light buffers hold the same light in every pixel, and how many pixels are lit at all.
+std::size_t differing_texels(const std::vector<texel>& a, const std::vector<texel>& b) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) n += std::memcmp(a[i].data(), b[i].data(), 4) != 0;
+  return n + (a.size() > b.size() ? a.size() - b.size() : b.size() - a.size());
+}
+std::size_t lit_texels(const std::vector<texel>& a) {
+  std::size_t n = 0;
+  for (const texel& t : a) n += t[0] || t[1] || t[2];
+  return n;
+}
+
+// `s` scaled by k about the origin: geometry, lights and camera (near and far included).
+scene scaled(scene s, float k) {
+  for (object& ob : s.objects) ob.transform = glm::scale(glm::mat4(1.0f), glm::vec3(k)) * ob.transform;
+  for (light& l : s.lights) {
+    l.position *= k;
+    l.range *= k;
+  }
+  s.view.position *= k;
+  s.view.target *= k;
+  s.view.near_plane *= k;
+  s.view.far_plane *= k;
+  return s;
+}
+
+// Pixels whose light is darker with shadows than without, by more than `codes` in a channel.
+std::vector<bool> shadowed_pixels(const frame& with, const frame& without, int codes) {
+  std::vector<bool> out(with.light_buffer.size(), false);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (std::size_t c = 0; c < 3; ++c) out[i] = out[i] || int(without.light_buffer[i][c]) - int(with.light_buffer[i][c]) > codes;
+  return out;
+}
+}  // namespace
+
+TEST_CASE("a light volume lights every pixel it covers, whatever the near plane and wherever the camera is",
+          "[render][lights]") {
+  // A point light of range 2 and a spot light of range 3.5; the camera looks at the point light from inside
+  // its volume, from its boundary, from just outside the 1.3 R the renderer once took for "may contain the
+  // camera", and from further away, with near planes that cut the volumes or not. Each frame's light
+  // buffer equals the one with both lights drawn full screen.
+  scene s = example("pane.json");
+  s.lights.clear();
+  light point;
+  point.kind = light_kind::point;
+  point.position = {0.0f, 1.5f, 0.0f};
+  point.range = 2.0f;
+  light spot;
+  spot.kind = light_kind::spot;
+  spot.position = {0.5f, 3.0f, 0.5f};
+  spot.direction = {0.0f, -1.0f, 0.0f};
+  spot.range = 3.5f;
+  spot.inner_angle = 25.0f;
+  spot.outer_angle = 35.0f;
+  s.lights = {point, spot};
+  const glm::vec3 away = glm::normalize(glm::vec3(0.2f, 0.3f, 1.0f));
+  for (backend b : backends)
+    for (float k : {0.5f, 1.0f, 1.301f, 1.35f, 1.9f})
+      for (float near_plane : {0.05f, 0.6f, 1.5f}) {
+        s.view.position = point.position + away * (k * point.range);
+        s.view.target = point.position;
+        s.view.near_plane = near_plane;
+        options o = small(160, 90);
+        auto meshes = draw(b, s, o);
+        o.fullscreen_lights = true;
+        auto fullscreen = draw(b, s, o);
+        if (!meshes || !fullscreen) continue;
+        INFO(name(b) << ", camera at " << k << " R from the point light, near plane " << near_plane);
+        CHECK(lit_texels(fullscreen->light_buffer) > 100);
+        CHECK(differing_texels(meshes->light_buffer, fullscreen->light_buffer) == 0);
+      }
+}
+
+TEST_CASE("a material alpha just below 1 is glass in the G-buffer and the compose, not stripes", "[render][alpha]") {
+  // A pane whose alpha rounded to 255 gave the compose two "opaque" samples: the pane on one row and the
+  // background on the next, codes apart.
+  for (float a : {1.0f - 0x1p-24f, 0.999f, 254.5f / 255.0f, 1.0f / 255.0f, 0.5f / 255.0f, 0.0f}) {
+    scene s = example("pane.json");
+    for (material& m : s.materials)
+      if (m.transparent()) m.alpha = a;
+    options o = small(160, 90);
+    for (backend b : backends) {
+      auto f = draw(b, s, o);
+      if (!f) continue;
+      INFO(name(b) << ", alpha " << a);
+      // Each pixel shows the glass its partner holds: a pixel and a glass partner look alike.
+      double step = 0.0;
+      std::size_t glass = 0;
+      for (int y = 0; y < 90; ++y)
+        for (int x = 0; x < 160; ++x) {
+          const glm::ivec2 p = shader::dst_rows_partner({x, y}, {160, 90});
+          const std::size_t i = std::size_t(y * 160 + x), j = std::size_t(p.y * 160 + p.x);
+          if (i == j || !(gbuffer_at(*f, j).alpha < 1.0f)) continue;
+          ++glass;
+          for (std::size_t c = 0; c < 3; ++c) step += std::abs(int(f->final_image.rgba[4 * i + c]) - int(f->final_image.rgba[4 * j + c]));
+        }
+      CHECK(glass > 200);  // the pane and the bottle keep their glass rows
+      CHECK(step / double(3 * std::max<std::size_t>(glass, 1)) < 1.0);
+    }
+  }
+}
+
+TEST_CASE("shadows keep their pixels when the scene is scaled from 1/1000 to 1000, and show no acne", "[render][shadows]") {
+  const scene base = example("pane.json");
+  // Only the spot light (it casts the shadows); the room and the floor alone cannot shadow themselves.
+  scene lit = base;
+  lit.lights.resize(1);
+  scene bare = lit;
+  bare.objects.resize(2);
+  for (backend b : backends) {
+    std::vector<std::vector<bool>> masks;
+    for (float k : {1e-3f, 1.0f, 1e3f}) {
+      // A shadow's pixels along its edges may fall either way at another scale (a point on a texel's
+      // boundary); 320x180 has enough inside for those to stay well under 1%.
+      options o = small(320, 180);
+      auto with = draw(b, scaled(lit, k), o);
+      auto bare_with = draw(b, scaled(bare, k), o);
+      o.shadows = render::shadow_mode::off;
+      auto without = draw(b, scaled(lit, k), o);
+      auto bare_without = draw(b, scaled(bare, k), o);
+      if (!with || !without || !bare_with || !bare_without) break;
+      INFO(name(b) << ", scale " << k);
+      // Acne: any darkening at all where nothing can shadow. A shadow: a loss of more than 3 codes, so that
+      // a code of rounding at another scale does not count as a different shadow.
+      const std::vector<bool> acne = shadowed_pixels(*bare_with, *bare_without, 0);
+      CHECK(std::count(acne.begin(), acne.end(), true) == 0);
+      masks.push_back(shadowed_pixels(*with, *without, 3));
+    }
+    if (masks.size() != 3) continue;
+    const std::size_t shadowed = std::size_t(std::count(masks[1].begin(), masks[1].end(), true));
+    CHECK(shadowed > 200);
+    for (int m : {0, 2}) {
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < masks[1].size(); ++i) differ += masks[std::size_t(m)][i] != masks[1][i];
+      INFO(name(b) << ": " << differ << " of " << shadowed << " shadowed pixels differ at scale " << (m ? 1e3 : 1e-3));
+      CHECK(double(differ) <= 0.01 * double(shadowed));
+    }
+  }
 }

@@ -14,8 +14,31 @@ namespace {
 // Cones wider than this are drawn as spheres: a cone's mesh grows without bound towards 90 degrees.
 constexpr float widest_cone = 60.0f;
 
-// The near plane of a spot light's shadow map (its far plane is the light's range).
-float shadow_near(const light& l) { return std::max(l.range * 1e-3f, 0.01f); }
+// A sphere around every object of the scene.
+struct bounds {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+};
+bounds scene_bounds(const scene& s) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const object& ob : s.objects)
+    for (const glm::vec3& p : ob.geometry.positions) {
+      const glm::vec3 w = glm::vec3(ob.transform * glm::vec4(p, 1.0f));
+      lo = glm::min(lo, w);
+      hi = glm::max(hi, w);
+    }
+  if (!(lo.x <= hi.x)) return {};
+  return {(lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f};
+}
+
+// The near and far planes of a spot light's shadow map: where the scene's bounds begin and end seen from
+// the light, within its range. Derived from lengths of the scene alone, so that a scene scaled uniformly
+// gets the same window depths (a constant floor on the near plane made shadows depend on the scale).
+glm::vec2 shadow_planes(const bounds& b, const light& l) {
+  const float d = glm::length(b.centre - l.position);
+  const float far_plane = std::min(l.range, d + b.radius);
+  return {std::clamp(d - b.radius, far_plane * 1e-3f, far_plane * 0.5f), far_plane};
+}
 
 glm::mat4 spot_view(const light& l) {
   const glm::vec3 up = std::fabs(l.direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
@@ -29,17 +52,9 @@ volume shape_of(const light& l) {
   return volume::sphere;
 }
 
-// Whether the camera may be inside the light's volume mesh (conservative).
-bool camera_inside(const camera& c, const light& l) {
-  // The meshes stay within 1.3 times the light's range (sphere_mesh(1) reaches 1.26 at its corners).
-  const float reach = shape_of(l) == volume::cone ? l.range / std::cos(glm::radians(l.outer_angle)) : l.range;
-  return glm::length(c.position - l.position) < 1.3f * reach;
-}
 }  // namespace
 
-volume volume_of(const camera& c, const light& l) {
-  return shape_of(l) == volume::fullscreen || camera_inside(c, l) ? volume::fullscreen : shape_of(l);
-}
+volume volume_of(const light& l, const options& o) { return o.fullscreen_lights ? volume::fullscreen : shape_of(l); }
 
 basis particle_basis(const options& o) {
   if (o.particles == options::particle_light::four_axes) return four_axes();
@@ -151,13 +166,9 @@ frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o) {
   return f;
 }
 
-frame_block light_frame(const scene& s, const light& l, const options& o) {
+frame_block light_frame(const scene& s, const light_block& l, const options& o) {
   frame_block f = camera_frame(s, o);
-  // The shadow map covers the outer cone; a 90-degree spot would need a 180-degree frustum, so
-  // shadow maps stop at 85 degrees and what lies outside them is lit unshadowed. A 0-degree spot lights
-  // only its axis, which a frustum of 1 degree holds (one of 0 degrees has an infinite projection).
-  const float half = std::clamp(l.outer_angle, 0.5f, 85.0f);
-  f.view_proj = glm::perspectiveRH_ZO(glm::radians(2.0f * half), 1.0f, shadow_near(l), l.range) * spot_view(l);
+  f.view_proj = l.shadow_view_proj;
   return f;
 }
 
@@ -168,30 +179,37 @@ std::vector<material_block> material_blocks(const scene& s) {
   return out;
 }
 
-std::vector<light_block> light_blocks(const scene& s, const options& o) {
+std::vector<light_block> light_blocks(const scene& s, const options&) {
   std::vector<light_block> out;
+  const bounds b = scene_bounds(s);
   for (const light& l : s.lights) {
-    light_block b{};
+    const glm::vec2 planes = shadow_planes(b, l);
+    light_block lb{};
     const float kind = l.kind == light_kind::directional ? 0.0f : l.kind == light_kind::point ? 1.0f : 2.0f;
-    b.position_range = glm::vec4(l.position, l.range);
-    b.direction_kind = glm::vec4(l.direction, kind);
-    b.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
-    b.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), l.shadows && l.kind == light_kind::spot ? 1.0f : 0.0f,
-                            shadow_near(l), l.range);
-    if (l.kind == light_kind::spot) b.shadow_view_proj = light_frame(s, l, o).view_proj;
+    lb.position_range = glm::vec4(l.position, l.range);
+    lb.direction_kind = glm::vec4(l.direction, kind);
+    lb.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
+    lb.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), l.shadows && l.kind == light_kind::spot ? 1.0f : 0.0f,
+                            planes.x, planes.y);
+    // The shadow map covers the outer cone; a 90-degree spot would need a 180-degree frustum, so
+    // shadow maps stop at 85 degrees and what lies outside them is lit unshadowed. A 0-degree spot lights
+    // only its axis, which a frustum of 1 degree holds (one of 0 degrees has an infinite projection).
+    const float half = std::clamp(l.outer_angle, 0.5f, 85.0f);
+    if (l.kind == light_kind::spot)
+      lb.shadow_view_proj = glm::perspectiveRH_ZO(glm::radians(2.0f * half), 1.0f, planes.x, planes.y) * spot_view(l);
     switch (shape_of(l)) {
-      case volume::fullscreen: b.volume = glm::mat4(1.0f); break;
-      case volume::sphere: b.volume = glm::scale(glm::translate(glm::mat4(1.0f), l.position), glm::vec3(l.range)); break;
+      case volume::fullscreen: lb.volume = glm::mat4(1.0f); break;
+      case volume::sphere: lb.volume = glm::scale(glm::translate(glm::mat4(1.0f), l.position), glm::vec3(l.range)); break;
       case volume::cone: {
         // The unit cone opens along +Z; a half turn about Y points it down the view space -Z, which the
         // inverse view turns to the light's direction (a rotation: the winding stays outward).
         const float r = l.range * std::tan(glm::radians(l.outer_angle));
         const glm::mat4 turn = glm::inverse(spot_view(l)) * glm::scale(glm::mat4(1.0f), glm::vec3(-1, 1, -1));
-        b.volume = turn * glm::scale(glm::mat4(1.0f), glm::vec3(r, r, l.range));
+        lb.volume = turn * glm::scale(glm::mat4(1.0f), glm::vec3(r, r, l.range));
         break;
       }
     }
-    out.push_back(b);
+    out.push_back(lb);
   }
   return out;
 }

@@ -41,9 +41,11 @@ struct options {
   bool reconstruct = false;
   int width = 320, height = 180;
   float refraction = 8.0f;      // strength in pixels; 0 turns refraction off
-  // In shadow-map depth units, towards the light: removes self-shadowing ("acne") at the cost of light
-  // leaking under occluders that touch their receiver; 0.0005 suits the examples' 1024-texel maps.
-  float shadow_bias = 0.0005f;
+  // A fraction of the receiver's distance from the light, along the light's axis: the receiver is moved
+  // that far towards the light before it is compared with the shadow map (in linear depth), which removes
+  // self-shadowing ("acne") at the cost of light leaking under occluders that touch their receiver. A
+  // fraction, so that a scene scaled uniformly keeps its shadows.
+  float shadow_bias = 0.005f;
   int shadow_size = 512;
   shadow_mode shadows = shadow_mode::transparent;  // for spot lights that cast them
   // Light through glass: the thesis's min(I_L, C) (Eq. 3.2), or the physically based I_L C.
@@ -64,6 +66,9 @@ struct options {
   // corners), or by the forward reference, which lights each fragment by every light.
   enum class particle_light { six_axes, four_axes, fourteen_axes, forward } particles = particle_light::six_axes;
   int volume_cells = 16;
+  // Every light drawn as a full-screen triangle instead of its volume mesh: the same light in every pixel
+  // the mesh covers, for checking the meshes (attenuation and falloff leave the rest at zero).
+  bool fullscreen_lights = false;
   // Effects planned even where the scene or the other options leave them nothing to do (the full
   // pipeline, for comparisons): refraction of strength 0, say, runs its code and moves no sample.
   effects force;
@@ -151,8 +156,8 @@ struct light_block {
 frame_block camera_frame(const scene& s, const options& o);
 // The same for camera `c` (a viewer's, moving from frame to frame).
 frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o);
-// The same, seen from spot light `l` (its shadow map's view and projection).
-frame_block light_frame(const scene& s, const light& l, const options& o);
+// The same, seen from spot light `l` of light_blocks (its shadow map's view and projection).
+frame_block light_frame(const scene& s, const light_block& l, const options& o);
 std::vector<material_block> material_blocks(const scene& s);
 std::vector<light_block> light_blocks(const scene& s, const options& o);
 // Light volumes: the basis the options pick, the atlas of the scene's particle systems (a region of
@@ -180,11 +185,13 @@ struct particle_plan {
 };
 particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o);
 
-// The volume mesh a light is drawn with: none (full screen) for directional lights, and for lights whose
-// volume may hold the camera. The thesis draws those with front faces culled, but then back faces past
-// the far plane are clipped away and their pixels lose the light; a full-screen triangle cannot miss
-// any, and attenuation and falloff leave the pixels beyond the light's reach at zero.
+// The volume mesh a light is drawn with: none (full screen) for directional lights (and for every light
+// with options::fullscreen_lights), a sphere or a cone otherwise. A volume mesh is drawn with its back
+// faces, depth clamped and no depth test: every pixel whose view ray meets the convex mesh in front of
+// the camera sees exactly one back face there, wherever the camera is (inside, outside, on the boundary),
+// and with the depth clamped neither the near nor the far plane clips it away. (The thesis draws front
+// faces when the camera is outside, which the near plane cuts off when it crosses the volume.)
 enum class volume { fullscreen, sphere, cone };
-volume volume_of(const camera& c, const light& l);
+volume volume_of(const light& l, const options& o);
 
 }  // namespace dstrans::render

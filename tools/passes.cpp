@@ -177,7 +177,7 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
     for (int vol = 0; vol < 2; ++vol) {
       bool used = false;
       for (std::size_t i = 0; i < s.lights.size(); ++i)
-        used = used || (plan.lookups[i] == k && (volume_of(s.view, s.lights[i]) != volume::fullscreen) == (vol == 1));
+        used = used || (plan.lookups[i] == k && (volume_of(s.lights[i], o) != volume::fullscreen) == (vol == 1));
       if (!used) continue;
       const std::string name = std::string("light pass") + lookup_label(k) + (vol ? " volume" : " fullscreen");
       if (auto ok = add(name, light_pass(dir, k, vol == 1, o)); !ok) return failure{ok.error()};

@@ -20,7 +20,10 @@ namespace dstrans::cli {
 namespace {
 const char* const usage =
     "usage: dstrans render <scene.json> --backend gl|vk --out DIR [--width W --height H] [--technique NAME]\n"
-    "       [--refraction PIXELS] [--shadows off|opaque|transparent] [--shadow-bias DEPTH] [--shadow-size N]\n"
+    "       [--refraction PIXELS] [--shadows off|opaque|transparent] [--shadow-size N]\n"
+    "       [--shadow-bias FRACTION]   a receiver moves this fraction of its distance from the light towards it\n"
+    "                           before the shadow test, in linear depth (default 0.005; 0 to 1), so shadows keep\n"
+    "                           their shape when a scene is scaled\n"
     "       [--frames N]   render N frames with the same resources; pass times are their medians\n"
     "       [--transmittance thesis|physical]   light through glass: min(I_L, C) (Eq. 3.2) or I_L C\n"
     "       [--float-targets]   light buffers and the final image in RGBA32F: no saturation, NaN kept\n"
@@ -80,13 +83,14 @@ int render(std::vector<std::string> args) {
     if (reconstruct == "edge-aware") o.reconstruct = true;
     else if (reconstruct != "partner") throw usage_error{"--reconstruct must be partner or edge-aware, not '" + reconstruct + "'"};
     o.volume_cells = to_int(take_option(args, "--volume-cells", "16"), 1, 64, "--volume-cells");
-    const std::string bias = take_option(args, "--shadow-bias", "0.0005");
+    const std::string bias = take_option(args, "--shadow-bias", "");
     try {
       std::size_t used = 0;
-      o.shadow_bias = std::stof(bias, &used);
+      if (!bias.empty()) o.shadow_bias = std::stof(bias, &used);
       if (used != bias.size() || !(o.shadow_bias >= 0.0f && o.shadow_bias <= 1.0f)) throw std::invalid_argument(bias);
     } catch (const std::exception&) {
-      throw usage_error{"--shadow-bias must be a number from 0 to 1 (shadow-map depth), not '" + bias + "'"};
+      throw usage_error{"--shadow-bias must be a number from 0 to 1 (a fraction of the receiver's distance from the "
+                        "light), not '" + bias + "'"};
     }
     const std::string transmittance = take_option(args, "--transmittance", "thesis");
     if (transmittance == "physical") o.physical_transmittance = true;

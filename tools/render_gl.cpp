@@ -182,7 +182,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   const GLuint frame_ubo = r.buffer(std::vector<frame_block>{camera}, "camera frame");
   const GLuint shadow_ubo = r.buffer(std::vector<frame_block>{camera}, "light frame");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, materials_binding, r.buffer(material_blocks(s), "materials"));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lights_binding, r.buffer(light_blocks(s, o), "lights"));
+  const std::vector<light_block> light_data = light_blocks(s, o);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lights_binding, r.buffer(light_data, "lights"));
 
   std::vector<gl::targets> gbuffers, light_buffers;
   for (int k = 0; k < layers; ++k) {
@@ -446,7 +447,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
           glEnable(GL_DEPTH_TEST);
           glDepthMask(GL_TRUE);
           glDisable(GL_CULL_FACE);
-          const frame_block lf = light_frame(s, l, o);
+          const frame_block lf = light_frame(s, light_data[i], o);
           glNamedBufferSubData(shadow_ubo, 0, sizeof lf, &lf);
           glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, shadow_ubo);
           glUseProgram(shadow_prog);
@@ -501,19 +502,22 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
           if (shadowed)
             for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
               glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
-          const volume v = volume_of(view, l);
+          const volume v = volume_of(l, o);
           glUseProgram(light_progs[int(lookup)][v == volume::fullscreen ? 0 : 1]);
           if (v == volume::fullscreen) {
             glDisable(GL_CULL_FACE);
             glBindVertexArray(fullscreen_vao);
             glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3, 1, GLuint(i));
           } else {
-            // Front faces only: each pixel the volume covers is lit once (the camera is outside it).
+            // Back faces, depth clamped: each pixel the volume covers is lit once (frame_data.hpp, volume).
             glEnable(GL_CULL_FACE);
-            glCullFace(GL_BACK);
+            glCullFace(GL_FRONT);
+            glEnable(GL_DEPTH_CLAMP);
             const gl::mesh& mesh = r.meshes[v == volume::sphere ? 0 : 1];
             glBindVertexArray(mesh.vertex_array);
             glDrawElementsInstancedBaseInstance(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, 1, GLuint(i));
+            glDisable(GL_DEPTH_CLAMP);
+            glCullFace(GL_BACK);
           }
         });
     }

@@ -234,8 +234,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     r.pipelines.push_back(shadow_pipe);
   }
 
-  // Light pipelines by [lookup][volume], for the lookups lights use; volumes are drawn with their front
-  // faces (the camera is outside).
+  // Light pipelines by [lookup][volume], for the lookups lights use; volumes are drawn with their back
+  // faces, depth clamped (frame_data.hpp, volume).
   compiled light_shaders[3][2]{};
   vk::pipeline light_pipes[3][2]{};
   for (shadow_mode k : all_lookups)
@@ -251,7 +251,8 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       if (vol) {
         st.bindings.push_back({0, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX});
         st.attributes.push_back(attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT));
-        st.cull = VK_CULL_MODE_BACK_BIT;
+        st.cull = VK_CULL_MODE_FRONT_BIT;
+        st.depth_clamp = true;
       }
       auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, light_buffers[0].formats, name, st);
       if (!p) return failure{p.error()};
@@ -426,6 +427,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   const vk::targets& shown = post.passes.empty() ? *final_target : post_targets.at(post.output);
 
   // Buffers.
+  const std::vector<light_block> light_data = light_blocks(s, o);
   frame_block camera = camera_frame(s, o);
   camera.params.z = float(hair_shadow_light(plan));
   const scene_mesh m = flatten(s);
@@ -444,7 +446,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       r.buffer(cone.indices, index_use, "spot light volume"),
       r.buffer(std::vector<frame_block>{camera}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "camera frame"),
       r.buffer(material_blocks(s), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials"),
-      r.buffer(light_blocks(s, o), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights")};
+      r.buffer(light_data, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights")};
   // The light volumes' buffers: the atlas's texels (the bake adds into them), each region's bake block,
   // the lights per dispatch; the particles' regions and quads.
   std::size_t particle_count = 0;
@@ -580,7 +582,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   std::vector<VkBuffer> light_ubos(s.lights.size(), VK_NULL_HANDLE);
   for (std::size_t i = 0; i < s.lights.size(); ++i)
     if (plan.lookups[i] != shadow_mode::off) {
-      auto ubo = r.buffer(std::vector<frame_block>{light_frame(s, s.lights[i], o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+      auto ubo = r.buffer(std::vector<frame_block>{light_frame(s, light_data[i], o)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                           "light frame");
       if (!ubo) return failure{ubo.error()};
       light_ubos[i] = *ubo;
@@ -710,7 +712,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         });
         continue;
       }
-      const volume v = volume_of(s.view, l);
+      const volume v = volume_of(l, o);
       const int vol = v == volume::fullscreen ? 0 : 1;
       const vk::pipeline& p = light_pipes[int(lookup)][vol];
       const compiled& sh = light_shaders[int(lookup)][vol];

@@ -246,6 +246,7 @@ state_guard::state_guard() {
   blend_ = glIsEnabled(GL_BLEND);
   cull_ = glIsEnabled(GL_CULL_FACE);
   scissor_ = glIsEnabled(GL_SCISSOR_TEST);
+  depth_clamp_ = glIsEnabled(GL_DEPTH_CLAMP);
 }
 
 state_guard::~state_guard() {
@@ -272,6 +273,7 @@ state_guard::~state_guard() {
   enable(GL_BLEND, blend_);
   enable(GL_CULL_FACE, cull_);
   enable(GL_SCISSOR_TEST, scissor_);
+  enable(GL_DEPTH_CLAMP, depth_clamp_);
 }
 
 formula_runner::~formula_runner() {

@@ -108,7 +108,7 @@ class debug_group {
 };
 
 // Saves the GL state dstrans's passes change and restores it when destroyed, so dstrans can run inside
-// an engine's frame: program, framebuffers, viewport, clip control, depth, blend, cull, scissor, vertex
+// an engine's frame: program, framebuffers, viewport, clip control, depth (test, clamp), blend, cull, scissor, vertex
 // array, active texture and the 2D textures of units 0-15, storage buffers 0-7.
 class state_guard {
  public:
@@ -121,7 +121,7 @@ class state_guard {
   GLint program_, draw_fb_, read_fb_, viewport_[4], clip_origin_, clip_depth_, depth_func_, blend_src_rgb_,
       blend_dst_rgb_, blend_src_a_, blend_dst_a_, blend_eq_rgb_, blend_eq_a_, cull_face_, front_face_,
       vertex_array_, active_texture_, textures_[16], storage_[8];
-  GLboolean depth_test_, depth_mask_, blend_, cull_, scissor_;
+  GLboolean depth_test_, depth_mask_, blend_, cull_, scissor_, depth_clamp_;
 };
 
 // Evaluates shared formulas in compute shaders; programs are built on first use and kept.

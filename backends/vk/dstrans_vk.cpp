@@ -429,6 +429,7 @@ result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shad
   VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   raster.polygonMode = VK_POLYGON_MODE_FILL;
   raster.cullMode = state.cull;
+  raster.depthClampEnable = state.depth_clamp;
   // Counter-clockwise in clip space faces the viewer, as on GL; Vulkan's facing already accounts for
   // the negative-height viewport (tested: backend_vk_test.cpp, "clip-space +y is the image's top row").
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;

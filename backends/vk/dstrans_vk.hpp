@@ -84,6 +84,8 @@ struct pipeline_state {
   // premultiplied layer whose alpha is the share of the image behind it that shows through.
   bool transmit = false;
   VkCullModeFlags cull = VK_CULL_MODE_NONE;  // counter-clockwise faces are front faces
+  // Depth clamped instead of clipping at the near and far planes (needs the device feature depthClamp).
+  bool depth_clamp = false;
 };
 
 // A pipeline with the set-0 descriptor layout its shaders declare.

@@ -95,6 +95,7 @@ result<std::unique_ptr<headless_device>> headless_device::create(bool validation
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features.pNext = &v13;
   features.features.fragmentStoresAndAtomics = VK_TRUE;
+  features.features.depthClamp = VK_TRUE;  // light volumes cut by the near plane
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &features;
   dci.queueCreateInfoCount = 1;

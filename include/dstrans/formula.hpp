@@ -295,6 +295,9 @@ inline const std::vector<formula>& formulas() {
   static const std::vector<formula> all{
       DSTRANS_FORMULA(dst_surface, dst_surface_zero).yields(0.0f, 0.0f),
       DSTRANS_FORMULA(dst_light_sample, dst_light_sample_zero).yields(0.0f, 0.0f),
+      DSTRANS_FORMULA(dst_alpha_unorm, dst_transparent),
+      DSTRANS_FORMULA(dst_alpha_unorm, dst_encode_alpha).within("alpha", {0.0f, 1.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_alpha_unorm, dst_decode_alpha),
       DSTRANS_FORMULA(dst_normal_unorm, dst_encode_normal).within("n", unit_vector()).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_normal_unorm, dst_decode_normal).within("e", {0.0f, 1.0f}).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_normal_octahedral_unorm, dst_encode_normal_octahedral).within("n", unit_vector()).yields(0.0f, 1.0f),
@@ -341,6 +344,14 @@ inline const std::vector<formula>& formulas() {
           .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_texel_transparent),
       DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_case),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_alpha),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_shadow_texel_depth),
+      DSTRANS_FORMULA(dst_transparent_shadow, dst_nan_to_zero),
+      DSTRANS_FORMULA(dst_opaque_shadow, dst_shadow_linear_depth)
+          .within("window_depth", {0.0f, 1.0f})
+          .within("near_plane", {0.01f, 1.0f})
+          .within("far_plane", {2.0f, 100.0f})
+          .yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_opaque_shadow, dst_shadow_depth).within({"d_p"}, {0.0f, 2.0f}).within("bias", {0.0f, 0.01f}).yields(-0.01f, 1.0f),
       DSTRANS_FORMULA(dst_opaque_shadow, dst_opaque_shadow)
           .within("light", {0.0f, 4.0f})
@@ -417,7 +428,8 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_octahedral, dst_octahedral_decode).within("e", {-1.0f, 1.0f}).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_fragment_node, dst_pack_tangent).within("tangent", unit_vector()).packs(16),
       DSTRANS_FORMULA(dst_fragment_node, dst_unpack_tangent).yields(-1.0f, 1.0f),
-      DSTRANS_FORMULA(dst_fragment_node, dst_pack_colour).within("colour_alpha", {0.0f, 1.0f}).packs(8),
+      DSTRANS_FORMULA(dst_fragment_node, dst_unorm8),
+      DSTRANS_FORMULA(dst_fragment_node, dst_pack_colour).within("colour_alpha", {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_fragment_node, dst_unpack_colour).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_hair, dst_finite3),
       DSTRANS_FORMULA(dst_hair, dst_sine).yields(0.0f, 1.0f),

@@ -23,6 +23,7 @@
 
 #include "detail/shared.hpp"
 #include "glsl.hpp"
+#include "surface.hpp"
 
 DSTRANS_SHARED(dst_interlace_rows,
 DST_FN bool dst_rows_keep(ivec2 p, ivec2 size) { return (p.y & 1) == 1; }
@@ -66,12 +67,13 @@ DST_FN ivec2 dst_none_partner(ivec2 p, ivec2 size) { return p; }
 // the same everywhere comes back exactly, and a neighbour across an edge (weight 0) adds nothing.
 DSTRANS_SHARED(dst_reconstruct,
 DST_FN float dst_layer_similarity(float depth_a, vec3 normal_a, float alpha_a, float depth_b, vec3 normal_b, float alpha_b) {
-  if ((alpha_a < 1.0f) != (alpha_b < 1.0f)) return 0.0f;
+  if (dst_transparent(alpha_a) != dst_transparent(alpha_b)) return 0.0f;
   float nearest_far = 1.0f - max(depth_a, depth_b);
   float gap = abs(depth_a - depth_b) / max(nearest_far, 1e-7f);
   if (isnan(gap)) return 0.0f;
   float by_depth = 1.0f - gap * 20.0f;
   float by_normal = 1.0f - (1.0f - dot(normal_a, normal_b)) * 5.0f;
+  if (isnan(by_normal)) return 0.0f;  // before the select below, which a GPU compiler may turn into min()
   float s = by_depth < by_normal ? by_depth : by_normal;
   if (isnan(s) || s <= 0.0f) return 0.0f;
   return s < 1.0f ? s : 1.0f;

@@ -32,7 +32,18 @@
 DSTRANS_SHARED(dst_fragment_node,
 DST_FN uint dst_pack_tangent(vec3 tangent) { return packSnorm2x16(dst_octahedral_encode(tangent)); }
 DST_FN vec3 dst_unpack_tangent(uint bits) { return dst_octahedral_decode(unpackSnorm2x16(bits)); }
-DST_FN uint dst_pack_colour(vec4 colour_alpha) { return packUnorm4x8(colour_alpha); }
+// packUnorm4x8 lets an implementation round a .5 tie either way, and a GPU may compute c * 255 + 0.5 with
+// one rounding (fma) where the CPU takes two: so each channel is rounded with integer arithmetic instead.
+// c * 2^24 is exact, its truncation the same everywhere, and (x 255 + 2^23) >> 24 rounds halves up without
+// overflowing 32 bits. NaN packs as 0, as clamp leaves it undefined.
+DST_FN uint dst_unorm8(float c) {
+  float v = isnan(c) ? 0.0f : (c < 0.0f ? 0.0f : (c > 1.0f ? 1.0f : c));
+  return (uint(v * 16777216.0f) * 255u + 8388608u) >> 24u;
+}
+DST_FN uint dst_pack_colour(vec4 colour_alpha) {
+  return dst_unorm8(colour_alpha.x) | (dst_unorm8(colour_alpha.y) << 8u) | (dst_unorm8(colour_alpha.z) << 16u) |
+         (dst_unorm8(colour_alpha.w) << 24u);
+}
 DST_FN vec4 dst_unpack_colour(uint bits) { return unpackUnorm4x8(bits); }
 )
 

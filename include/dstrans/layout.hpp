@@ -44,6 +44,7 @@ inline constexpr codec<glm::vec3> normal_unorm = DSTRANS_CODEC(glm::vec3, dst_no
 // pointers here.
 inline constexpr codec<glm::vec3> normal_octahedral_unorm{&text::dst_normal_octahedral_unorm, "dst_encode_normal_octahedral",
                                                           "dst_decode_normal_octahedral", nullptr, nullptr};
+inline constexpr codec<float> alpha_unorm = DSTRANS_CODEC(float, dst_alpha_unorm, dst_encode_alpha, dst_decode_alpha);
 inline constexpr codec<float> spec_power_unorm =
     DSTRANS_CODEC(float, dst_spec_power_unorm, dst_encode_spec_power, dst_decode_spec_power);
 
@@ -93,7 +94,7 @@ struct diffuse : detail::field_base<surface, glm::vec3, &surface::diffuse, 8> {
   static constexpr const char* name = "diffuse";
   static constexpr const char* parts = "rgb";
 };
-struct alpha : detail::field_base<surface, float, &surface::alpha, 8> {
+struct alpha : detail::field_base<surface, float, &surface::alpha, 8, &alpha_unorm> {
   static constexpr const char* name = "alpha";
   static constexpr const char* parts = "";
 };

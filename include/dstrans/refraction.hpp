@@ -51,12 +51,12 @@ DST_FN ivec2 dst_refraction_pixel(ivec2 p, ivec2 size, vec3 view_normal, float s
 DST_FN bool dst_refraction_rejected(float depth_t, float depth_o) { return depth_t > depth_o; }
 DST_FN int dst_refraction_source(float depth_t, float alpha_moved, float depth_moved, float alpha_partner,
                                  float depth_partner) {
-  if (alpha_moved >= 1.0f) return dst_refraction_rejected(depth_t, depth_moved) ? 0 : 1;
-  if (alpha_partner >= 1.0f) return dst_refraction_rejected(depth_t, depth_partner) ? 0 : 2;
+  if (!dst_transparent(alpha_moved)) return dst_refraction_rejected(depth_t, depth_moved) ? 0 : 1;
+  if (!dst_transparent(alpha_partner)) return dst_refraction_rejected(depth_t, depth_partner) ? 0 : 2;
   return 0;
 }
 DST_FN bool dst_refraction_accepted_by_mask(float alpha_moved, float alpha_partner) {
-  return max(alpha_moved, alpha_partner) >= 1.0f && min(alpha_moved, alpha_partner) < 1.0f;
+  return dst_transparent(alpha_moved) != dst_transparent(alpha_partner);
 }
 )
 

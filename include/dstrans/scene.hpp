@@ -17,6 +17,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "post.hpp"
+#include "surface.hpp"
 
 namespace dstrans {
 
@@ -36,7 +37,7 @@ struct material {
   // Many thin layers (hair, fur, dense smoke): drawn into per-pixel lists and resolved by S1's k-buffer
   // instead of the interlaced G-buffer; the shape's normals carry the strand tangents.
   bool hair = false;
-  bool transparent() const { return alpha < 1.0f && !hair; }
+  bool transparent() const { return shader::dst_transparent(alpha) && !hair; }
 };
 
 enum class light_kind { directional, point, spot };

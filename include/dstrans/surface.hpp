@@ -81,6 +81,20 @@ DST_FN vec2 dst_encode_normal_octahedral(vec3 n) { return dst_octahedral_encode(
 DST_FN vec3 dst_decode_normal_octahedral(vec2 e) { return dst_octahedral_decode(e * 2.0f - 1.0f); }
 )
 
+// Alpha in a UNORM target: below 1 is transparent, 1 opaque (surface.alpha), and the target must keep the
+// difference. Rounding would store any alpha within half a code of 1 (in [0.99804, 1) for 8 bits) as 1,
+// so a transparent alpha is stored at most 254/255, which every UNORM of 8 bits or more keeps below its
+// largest code; 1 and above store 1. NaN is opaque, as a NaN material alpha is nowhere below 1.
+// Decoding is the identity: what comes back below 1 is transparent.
+DSTRANS_SHARED(dst_alpha_unorm,
+DST_FN bool dst_transparent(float alpha) { return !isnan(alpha) && alpha < 1.0f; }
+DST_FN float dst_encode_alpha(float alpha) {
+  if (isnan(alpha) || !dst_transparent(alpha)) return 1.0f;
+  return alpha > 254.0f / 255.0f ? 254.0f / 255.0f : alpha;
+}
+DST_FN float dst_decode_alpha(float e) { return e; }
+)
+
 // A Phong exponent in a UNORM target: [0, 255] maps to [0, 1], so 8 bits keep every integer power.
 DSTRANS_SHARED(dst_spec_power_unorm,
 DST_FN float dst_encode_spec_power(float p) { return p * (1.0f / 255.0f); }

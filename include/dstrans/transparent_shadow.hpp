@@ -23,6 +23,12 @@
 //   exactly an occluder's depth is not behind it;
 // - a point beyond the far plane (d_P - b > 1, or NaN) is taken at the far plane: the cleared map (depth
 //   1) does not shadow it, occluders the map holds do;
+// - NaN is decided before any comparison, so that no compiler's folding of a comparison decides it: a
+//   NaN alpha is opaque (dst_transparent), a NaN occluder depth is the cleared map's 1, and a NaN channel
+//   of the light or of the occluder's colour is 0;
+// - the renderer compares linear depths, as fractions of the map's far plane: dst_shadow_linear_depth turns
+//   a perspective map's window depth (0 at near, 1 at far; NaN as the cleared 1) into one, so that the
+//   bias can be a fraction of the receiver's distance and a uniformly scaled scene keeps its shadows;
 // - dst_opaque_shadow is the plain shadow map the thesis compares with, looked up at the texel only.
 // dst_shadow_case says which line of Eq. 3.1 applies (0 blocked, 1 through the transparent candidate, 2
 // lit) for both transmittances.
@@ -33,8 +39,13 @@
 #pragma once
 
 #include "detail/shared.hpp"
+#include "surface.hpp"
 
 DSTRANS_SHARED(dst_opaque_shadow,
+DST_FN float dst_shadow_linear_depth(float window_depth, float near_plane, float far_plane) {
+  float d = isnan(window_depth) ? 1.0f : (window_depth < 0.0f ? 0.0f : (window_depth > 1.0f ? 1.0f : window_depth));
+  return near_plane / (far_plane - d * (far_plane - near_plane));
+}
 DST_FN float dst_shadow_depth(float d_p, float bias) {
   float d = d_p - bias;
   return isnan(d) || d >= 1.0f ? 1.0f : d;
@@ -45,25 +56,36 @@ DST_FN vec3 dst_opaque_shadow(vec3 light, float d_p, float bias, float depth) {
 )
 
 DSTRANS_SHARED(dst_transparent_shadow,
-DST_FN bool dst_shadow_texel_transparent(vec4 occluder_a, vec4 occluder_b) { return occluder_a.w <= occluder_b.w; }
+DST_FN float dst_shadow_alpha(float alpha) { return dst_transparent(alpha) ? alpha : 1.0f; }
+DST_FN float dst_shadow_texel_depth(float depth) { return isnan(depth) ? 1.0f : depth; }
+DST_FN vec3 dst_nan_to_zero(vec3 v) {
+  return vec3(isnan(v.x) ? 0.0f : v.x, isnan(v.y) ? 0.0f : v.y, isnan(v.z) ? 0.0f : v.z);
+}
+DST_FN bool dst_shadow_texel_transparent(vec4 occluder_a, vec4 occluder_b) {
+  return dst_shadow_alpha(occluder_a.w) <= dst_shadow_alpha(occluder_b.w);
+}
 DST_FN int dst_shadow_case(float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b, vec4 occluder_b) {
   float d = dst_shadow_depth(d_p, bias);
+  float da = dst_shadow_texel_depth(depth_a), db = dst_shadow_texel_depth(depth_b);
   bool a_transparent = dst_shadow_texel_transparent(occluder_a, occluder_b);
-  if (a_transparent && occluder_a.w >= 1.0f) return depth_a < d ? 0 : 2;
-  float d_min = a_transparent ? depth_a : depth_b;
-  float d_max = a_transparent ? depth_b : depth_a;
-  if (max(occluder_a.w, occluder_b.w) >= 1.0f && d_max < d) return 0;
+  bool a_opaque = !dst_transparent(occluder_a.w), b_opaque = !dst_transparent(occluder_b.w);
+  if (a_transparent && a_opaque) return da < d ? 0 : 2;
+  float d_min = a_transparent ? da : db;
+  float d_max = a_transparent ? db : da;
+  if ((a_opaque || b_opaque) && d_max < d) return 0;
   if (d_min < d) return 1;
   return 2;
 }
 DST_FN vec3 dst_shadowed_light(vec3 light, bool physical, float d_p, float bias, float depth_a, vec4 occluder_a,
                                float depth_b, vec4 occluder_b) {
   int k = dst_shadow_case(d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
+  vec3 l = dst_nan_to_zero(light);
   if (k == 0) return vec3(0.0f);
-  if (k == 2) return light;
-  vec4 c = dst_shadow_texel_transparent(occluder_a, occluder_b) ? occluder_a : occluder_b;
-  vec3 filtered = physical ? light * vec3(c.x, c.y, c.z) : min(light, vec3(c.x, c.y, c.z));
-  return filtered * (1.0f - c.w);
+  if (k == 2) return l;
+  vec4 t = dst_shadow_texel_transparent(occluder_a, occluder_b) ? occluder_a : occluder_b;
+  vec3 c = dst_nan_to_zero(vec3(t.x, t.y, t.z));
+  vec3 filtered = physical ? l * c : min(l, c);
+  return filtered * (1.0f - dst_shadow_alpha(t.w));
 }
 DST_FN vec3 dst_transparent_shadow(vec3 light, float d_p, float bias, float depth_a, vec4 occluder_a, float depth_b,
                                    vec4 occluder_b) {

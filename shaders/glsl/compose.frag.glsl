@@ -12,7 +12,7 @@ void main() {
 #ifdef DST_TRANSPARENCY
   dst_surface b = dst_other(p);
   dst_light_sample light_b = dst_other_light(p);
-  if (a.alpha < 1.0f || b.alpha < 1.0f) {
+  if (dst_transparent(a.alpha) || dst_transparent(b.alpha)) {
     bool a_transparent = a.alpha <= b.alpha;
     dst_surface t = a_transparent ? a : b;
     dst_light_sample light_t = a_transparent ? light_a : light_b;
@@ -23,7 +23,7 @@ void main() {
     // too; a sample in front of the glass would leak into it, so the background stays then.
     ivec2 moved = dst_refraction_pixel(p, frame.size.xy, mat3(frame.view) * t.normal, frame.params.x);
     dst_surface r = dst_gbuffer_read(moved);
-    dst_surface r2 = r.alpha < 1.0f ? dst_other(moved) : r;  // the partner only where it is needed
+    dst_surface r2 = dst_transparent(r.alpha) ? dst_other(moved) : r;  // the partner only where it is needed
     int from = dst_refraction_source(t.depth, r.alpha, r.depth, r2.alpha, r2.depth);
     if (from != 0) {
       o = from == 1 ? r : r2;

@@ -9,5 +9,5 @@ layout(location = 3) flat in uint light_id;
 bool dst_forward_surface(out dst_surface s) {
   dst_material_data m = materials[surface_material];
   s = dst_material_surface(m, world_normal);
-  return s.alpha >= 1.0f || dst_interlace_keep(dst_pixel(), frame.size.xy);
+  return !dst_transparent(s.alpha) || dst_interlace_keep(dst_pixel(), frame.size.xy);
 }

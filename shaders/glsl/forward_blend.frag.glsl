@@ -14,7 +14,7 @@ void main() {
   ivec2 size = frame.size.xy;
   ivec2 p = dst_pixel(), q = dst_interlace_partner(p, size);
   vec4 a = texelFetch(dst_forward_colour, p, 0), b = texelFetch(dst_forward_colour, q, 0);
-  if (a.w >= 1.0f && b.w >= 1.0f) {
+  if (!dst_transparent(a.w) && !dst_transparent(b.w)) {
     colour = vec4(a.xyz, 1.0f);
     return;
   }
@@ -33,6 +33,6 @@ void main() {
 #else
   bool accept = dst_refraction_accepted_by_mask(alpha_moved, alpha_partner);
 #endif
-  if (accept) o = r.w < 1.0f ? r2 : r;
+  if (accept) o = dst_transparent(r.w) ? r2 : r;
   colour = vec4(dst_blend(o.xyz, t.xyz, t.w), 1.0f);
 }

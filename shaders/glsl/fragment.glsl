@@ -12,7 +12,7 @@ vec3 dst_world_position(ivec2 pixel, float depth) {
 // The surface of a fragment of `m` with interpolated normal `normal`: transparent materials are
 // double-sided, their normal turned to face the viewer.
 dst_surface dst_material_surface(dst_material_data m, vec3 normal) {
-  bool transparent = m.diffuse_alpha.w < 1.0f;
+  bool transparent = dst_transparent(m.diffuse_alpha.w);
   dst_surface s = dst_surface_zero();
   s.diffuse = m.diffuse_alpha.xyz;
   s.alpha = m.diffuse_alpha.w;

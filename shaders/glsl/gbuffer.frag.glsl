@@ -11,10 +11,10 @@ layout(binding = 13) uniform sampler2D dst_peel_depth;
 void main() {
   dst_material_data m = materials[surface_material];
 #ifdef DST_PEEL
-  if (m.diffuse_alpha.w < 1.0f || gl_FragCoord.z <= texelFetch(dst_peel_depth, dst_pixel(), 0).x) discard;
+  if (dst_transparent(m.diffuse_alpha.w) || gl_FragCoord.z <= texelFetch(dst_peel_depth, dst_pixel(), 0).x) discard;
 #endif
 #ifdef DST_TRANSPARENCY
-  if (m.diffuse_alpha.w < 1.0f && !dst_interlace_keep(dst_pixel(), frame.size.xy)) discard;
+  if (dst_transparent(m.diffuse_alpha.w) && !dst_interlace_keep(dst_pixel(), frame.size.xy)) discard;
 #endif
   dst_gbuffer_write(dst_material_surface(m, world_normal));
 }

@@ -28,7 +28,7 @@ float dst_hair_visibility(vec3 world, dst_light_data l, float alpha, int radius)
     for (int dx = -radius; dx <= radius; ++dx) {
       ivec2 t = clamp(texel + ivec2(dx, dy), ivec2(0), size - 1);
       float d = dst_shadow_read(t).depth;
-      float occluder = far_plane * near_plane / (far_plane - d * (far_plane - near_plane));  // view depth
+      float occluder = far_plane * dst_shadow_linear_depth(d, near_plane, far_plane);  // view depth
       float w = dst_shadow_tap_weight(float(dx), float(dy));
       sum += w * dst_hair_transmittance(alpha, 50.0f, along - occluder - 0.01f);
       weights += w;

@@ -3,6 +3,8 @@
 // min(I_L, C)) and Phong (Eq. 2.1). Shared by the deferred light pass and the forward light passes.
 
 #ifdef DST_SHADOWS
+// Depths are compared linearly, as fractions of the map's far plane (h.w is the distance along the light's
+// axis), and the bias (frame.params.y) is a fraction of the receiver's distance.
 vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
   vec4 h = l.shadow_view_proj * vec4(world, 1.0f);
   if (!(h.w > 0.0f)) return light;
@@ -10,18 +12,21 @@ vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
   ivec2 size = frame.size.zw;
   ivec2 texel = ivec2(floor(vec2(ndc.x * 0.5f + 0.5f, 0.5f - ndc.y * 0.5f) * vec2(size)));
   if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, size))) return light;
+  float near_plane = l.cos_inner.z, far_plane = l.cos_inner.w;
+  float d_p = h.w / far_plane;
+  float bias = frame.params.y * d_p;
 #ifdef DST_TRANSPARENT_SHADOWS
   ivec2 other = dst_interlace_partner(texel, size);
   dst_surface a = dst_shadow_read(texel), b = dst_shadow_read(other);
+  float depth_a = dst_shadow_linear_depth(a.depth, near_plane, far_plane);
+  float depth_b = dst_shadow_linear_depth(b.depth, near_plane, far_plane);
 #ifdef DST_TRANSMITTANCE
-  return dst_transmitted_shadow(light, ndc.z, frame.params.y, a.depth, vec4(a.diffuse, a.alpha), b.depth,
-                                vec4(b.diffuse, b.alpha));
+  return dst_transmitted_shadow(light, d_p, bias, depth_a, vec4(a.diffuse, a.alpha), depth_b, vec4(b.diffuse, b.alpha));
 #else
-  return dst_transparent_shadow(light, ndc.z, frame.params.y, a.depth, vec4(a.diffuse, a.alpha), b.depth,
-                                vec4(b.diffuse, b.alpha));
+  return dst_transparent_shadow(light, d_p, bias, depth_a, vec4(a.diffuse, a.alpha), depth_b, vec4(b.diffuse, b.alpha));
 #endif
 #else
-  return dst_opaque_shadow(light, ndc.z, frame.params.y, dst_shadow_read(texel).depth);
+  return dst_opaque_shadow(light, d_p, bias, dst_shadow_linear_depth(dst_shadow_read(texel).depth, near_plane, far_plane));
 #endif
 }
 #endif

@@ -11,7 +11,7 @@ void main() {
   if (m.specular.w > 0.5f) s.alpha = 1.0f;
 #endif
 #ifdef DST_TRANSPARENT_SHADOWS
-  if (s.alpha < 1.0f && !dst_interlace_keep(dst_pixel(), frame.size.zw)) discard;
+  if (dst_transparent(s.alpha) && !dst_interlace_keep(dst_pixel(), frame.size.zw)) discard;
 #endif
   dst_shadow_write(s);
 }
