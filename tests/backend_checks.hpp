@@ -40,6 +40,22 @@ inline void check_every_formula(const gpu_runner& gpu) {
   }
 }
 
+// More calls than one dispatch may have on Mesa (65,535 groups of 64): the runner splits them, and every
+// call's result is the CPU's (a dispatch past the limit once returned zeros and no error).
+inline void check_large_batch(const gpu_runner& gpu) {
+  const formula* f = find_formula("dst_unorm8");
+  REQUIRE(f);
+  const std::size_t calls = 65535u * 64u + 1000u;
+  words args;
+  for (std::size_t i = 0; i < calls; ++i) put(float(i % 1021) / 1020.0f, args);
+  const auto out = gpu(*f, args, calls);
+  REQUIRE(out);
+  REQUIRE(out->size() == calls);
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < calls; ++i) wrong += (*out)[i] != shader::dst_unorm8(float(i % 1021) / 1020.0f);
+  CHECK(wrong == 0);
+}
+
 // Alphas at the edges of "transparent": just below 1 (which rounding alone would store as opaque) and
 // just above 0, then 1.
 inline constexpr float boundary_alphas[] = {1.0f - 0x1p-24f, 0.999f, 254.5f / 255.0f, 1.0f / 255.0f, 0.5f / 255.0f, 0.0f, 1.0f};

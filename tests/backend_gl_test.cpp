@@ -68,6 +68,14 @@ TEST_CASE("GL: every formula agrees with the CPU on 10,000 inputs", "[gl][formul
   check_quiet(*ctx);
 }
 
+TEST_CASE("GL: a batch past the dispatch limit runs in several dispatches, every result right", "[gl][formula]") {
+  auto ctx = context();
+  if (!ctx) return;
+  gl::formula_runner runner;
+  testing::check_large_batch([&](const formula& f, const words& a, std::size_t n) { return runner.run(f, a, n); });
+  check_quiet(*ctx);
+}
+
 TEST_CASE("GL: every formula's result is finite and within its physical range for 100,000 inputs", "[gl][property]") {
   auto ctx = context();
   if (!ctx) return;

@@ -100,6 +100,12 @@ TEST_CASE("VK: every formula agrees with the CPU on 10,000 inputs", "[vk][formul
   testing::check_every_formula([&](const formula& f, const words& a, std::size_t n) { return fx.dev->run_formula(f, a, n); });
 }
 
+TEST_CASE("VK: a batch past the dispatch limit runs in several dispatches, every result right", "[vk][formula]") {
+  vk_fixture fx;
+  if (!open(fx)) return;
+  testing::check_large_batch([&](const formula& f, const words& a, std::size_t n) { return fx.dev->run_formula(f, a, n); });
+}
+
 TEST_CASE("VK: every formula's result is finite and within its physical range for 100,000 inputs", "[vk][property]") {
   vk_fixture fx;
   if (!open(fx)) return;

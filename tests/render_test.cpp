@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 
 #include <dstrans/dstrans.hpp>
 #include <dstrans/light_volume.hpp>
@@ -1460,5 +1461,21 @@ TEST_CASE("shadows keep their pixels when the scene is scaled from 1/1000 to 100
       INFO(name(b) << ": " << differ << " of " << shadowed << " shadowed pixels differ at scale " << (m ? 1e3 : 1e-3));
       CHECK(double(differ) <= 0.01 * double(shadowed));
     }
+  }
+}
+
+TEST_CASE("a camera looking straight down sees the scene, on both backends", "[render][camera]") {
+  scene s = example("pane.json");
+  s.view.position = {0.0f, 3.0f, 0.0f};
+  s.view.target = {0.0f, 0.0f, 0.0f};
+  for (backend b : backends) {
+    auto f = draw(b, s, small(160, 90));
+    if (!f) continue;
+    INFO(name(b));
+    std::set<std::uint32_t> colours;
+    for (std::size_t i = 0; i + 3 < f->final_image.rgba.size(); i += 4)
+      colours.insert(std::uint32_t(f->final_image.rgba[i]) | std::uint32_t(f->final_image.rgba[i + 1]) << 8 |
+                     std::uint32_t(f->final_image.rgba[i + 2]) << 16);
+    CHECK(colours.size() > 50);  // the floor, the sphere, the glass and their light; not one flat colour
   }
 }

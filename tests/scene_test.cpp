@@ -1,7 +1,9 @@
 // Procedural shapes, scene flattening, and scene files: good ones load, bad ones name the field.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <map>
+#include <tuple>
 
 #include <dstrans/particles.hpp>
 #include <dstrans/scene.hpp>
@@ -116,7 +118,7 @@ TEST_CASE("a good scene file loads", "[scene]") {
 
 TEST_CASE("bad scene files get an error that names the field", "[scene]") {
   const std::map<std::string, std::string> cases{
-      {edit("\"fov_y\": 50", "\"fov_y\": \"wide\""), "good.json: camera.fov_y: expected a number, got \"wide\""},
+      {edit("\"fov_y\": 50", "\"fov_y\": \"wide\""), "good.json: camera.fov_y: expected a number, got the string \"wide\""},
       {edit("\"target\": [0, 1, 0], ", ""), "good.json: camera.target: missing"},
       {edit("\"size\": [2, 1.5]", "\"size\": [2, -1.5]"), "good.json: objects[1].size[1]: -1.5 is outside"},
       {edit("\"size\": [2, 1.5]", "\"size\": [2, 1.5, 3]"), "good.json: objects[1].size: expected an array of 2 numbers"},
@@ -147,7 +149,7 @@ TEST_CASE("bad scene files get an error that names the field", "[scene]") {
   }
   const auto missing = load_scene("no/such/scene.json");
   REQUIRE_FALSE(missing);
-  CHECK(missing.error() == "no/such/scene.json: cannot read the scene file");
+  CHECK(missing.error() == "no/such/scene.json: cannot read the scene file: No such file or directory");
 }
 
 TEST_CASE("glass_room and its variants: the thesis's scene at equal triangle counts", "[scene]") {
@@ -228,4 +230,75 @@ TEST_CASE("particle systems: the same particles for a seed, centred inside their
   }
   CHECK(systems[0] == 200u);
   CHECK(systems[1] == 200u);
+}
+
+TEST_CASE("hostile scene files get a short error, not a crash, a silent rounding or all the memory", "[scene][hostile]") {
+  // 100,000 nested arrays where a number goes: refused while parsing, before anything recurses over it.
+  const std::string deep = edit("\"fov_y\": 50", "\"fov_y\": " + std::string(100000, '[') + std::string(100000, ']'));
+  const auto nested = parse_scene(deep, "good.json");
+  REQUIRE_FALSE(nested);
+  CHECK_THAT(nested.error(), Catch::Contains("nested more than 32 levels deep"));
+  // A value quoted in an error is an excerpt: a million-number ambient gives a line, not megabytes.
+  std::string many = "[0";
+  for (int i = 0; i < 1000000; ++i) many += ",0";
+  const auto huge = parse_scene(edit("\"ambient\": [0.1, 0.1, 0.1]", "\"ambient\": " + many + "]"), "good.json");
+  REQUIRE_FALSE(huge);
+  CHECK(huge.error() == "good.json: ambient: expected an array of 3 numbers, got an array of 1000001 values");
+  // Whole numbers stay whole.
+  for (const auto& [from, to, field] : {std::tuple{"\"segments\": 24", "\"segments\": 3.7", "objects[2].segments"},
+                                        std::tuple{"\"count\": 50", "\"count\": 0.5", "particles[0].count"},
+                                        std::tuple{"\"seed\": 4", "\"seed\": 18446744073709551615", "particles[0].seed"}}) {
+    const auto s = parse_scene(edit(from, to), "good.json");
+    INFO(to);
+    REQUIRE_FALSE(s);
+    CHECK_THAT(s.error(), Catch::StartsWith(std::string("good.json: ") + field + ": "));
+  }
+  CHECK_THAT(parse_scene(edit("\"segments\": 24", "\"segments\": 3.7"), "good.json").error(), Catch::Contains("expected a whole number, got 3.7"));
+  // The budget: estimated before building, refused with the estimate.
+  const auto hair = parse_scene(edit("{\"shape\": \"bottle\"", "{\"shape\": \"hair\", \"radius\": 0.5, \"strands\": 100000, \"length\": 1, \"segments\": 8, \"material\": \"wall\"}, {\"shape\": \"bottle\""), "good.json");
+  REQUIRE_FALSE(hair);
+  CHECK_THAT(hair.error(), Catch::Matches("good.json: objects\\[2\\]\\.shape: the scene would take about [0-9]+ MiB by here \\(6400[0-9]+ vertices, 0 particles, 0 lights\\), over the budget of 1024 MiB \\(--budget MIB raises it\\)"));
+  std::string systems;
+  for (int i = 0; i < 40; ++i) systems += std::string(i ? ", " : "") + "{\"material\": \"wall\", \"base\": [0, 0, 0], \"count\": 1000000}";
+  const auto smoke = parse_scene(edit("\"particles\": [", "\"particles\": [" + systems + ", "), "good.json");
+  REQUIRE_FALSE(smoke);
+  CHECK_THAT(smoke.error(), Catch::Contains("particles[1].count: the scene would take about"));
+  scene_budget roomy;
+  roomy.bytes = std::size_t(8) << 30;
+  CHECK(parse_scene(edit("\"count\": 50", "\"count\": 1000000"), "good.json", roomy));
+}
+
+TEST_CASE("a scene path that is no plain file, or too large a file, is refused unread", "[scene][hostile]") {
+  const auto zero = load_scene("/dev/zero");
+  REQUIRE_FALSE(zero);
+  CHECK(zero.error() == "/dev/zero: not a plain file, so not read as a scene file");
+  const auto folder = load_scene(DSTRANS_SOURCE_DIR);
+  REQUIRE_FALSE(folder);
+  CHECK(folder.error() == std::string(DSTRANS_SOURCE_DIR) + ": a folder, not a scene file");
+  scene_budget small;
+  small.file_bytes = 100;
+  const auto big = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/pane.json", small);
+  REQUIRE_FALSE(big);
+  CHECK_THAT(big.error(), Catch::EndsWith("bytes, more than a scene file may have (100)"));
+}
+
+TEST_CASE("a camera looking straight up or down gets a well-defined view", "[scene]") {
+  for (float y : {3.0f, -3.0f}) {
+    camera c;
+    c.position = {0.0f, y, 0.0f};
+    c.target = {0.0f, 0.0f, 0.0f};
+    const glm::mat4 v = c.view();
+    INFO("camera at y = " << y);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) CHECK(std::isfinite(v[i][j]));
+    // The image's top points along -Z looking down, +Z looking up; the view axis is the camera's.
+    const glm::vec3 up = glm::vec3(glm::inverse(v) * glm::vec4(0, 1, 0, 0));
+    CHECK(up.z == Approx(y > 0.0f ? -1.0f : 1.0f));
+    const glm::vec3 forward = glm::vec3(glm::inverse(v) * glm::vec4(0, 0, -1, 0));
+    CHECK(forward.y == Approx(y > 0.0f ? -1.0f : 1.0f));
+  }
+  camera tilted;
+  tilted.position = {0.0f, 3.0f, 0.5f};
+  tilted.target = {0.0f, 0.0f, 0.0f};
+  CHECK(tilted.up() == glm::vec3(0.0f, 1.0f, 0.0f));  // anything off the vertical keeps +Y
 }

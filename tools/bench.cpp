@@ -1,21 +1,24 @@
 // dstrans bench: the thesis's comparisons (Tables 4.1-4.7) measured on this machine, with the error of
 // each technique against deferred depth peeling (the thesis's reference), as results.json and report.md.
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
 
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
 #include "gpu.hpp"
+#include "output_dir.hpp"
 #include "leaks.hpp"
 #include "passes.hpp"
 #ifdef DSTRANS_HAVE_GL
@@ -36,6 +39,21 @@ const char* const usage =
     "usage: dstrans bench [--quick] --out DIR [--backend gl|vk]\n"
     "renders glass_room and its variants with every technique and setting the thesis compared, and writes\n"
     "DIR/results.json and DIR/report.md; --quick measures fewer light counts at a smaller size\n";
+
+// Runs `argv` (found on the PATH) and waits for it: a failure unless it exits 0.
+result<bool> run_program(const std::vector<std::string>& argv) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  if (const int e = posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ); e != 0)
+    return failure{argv[0] + ": cannot run: " + std::strerror(e)};
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return failure{argv[0] + ": lost: " + std::strerror(errno)};
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return failure{"the report failed (" + argv[1] + ")"};
+  return true;
+}
 
 struct config {
   render::technique method;
@@ -405,17 +423,15 @@ int bench(std::vector<std::string> args) {
   try {
     const std::string out = take_option(args, "--out", "");
     const std::string backend = take_option(args, "--backend", "gl");
-    bool quick = false;
-    for (const std::string& a : args) {
-      if (a == "--quick") quick = true;
-      else throw usage_error{"unknown argument '" + a + "'"};
-    }
+    const bool quick = take_flag(args, "--quick");
+    for (const std::string& a : operands(args)) throw usage_error{"unknown argument '" + a + "'"};
     if (out.empty()) throw usage_error{"bench needs --out DIR"};
     if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
-    std::error_code ec;
-    std::filesystem::create_directories(out, ec);
-    if (ec || !std::ofstream(out + "/results.json")) {
-      std::fprintf(stderr, "dstrans bench: cannot write into %s\n", out.c_str());
+    // Checked before the minutes of measuring; results.json and the report replace the previous run's
+    // only once all of them are written (bench.json lists them).
+    auto dir = output_dir::open(out, "bench.json");
+    if (!dir) {
+      std::fprintf(stderr, "dstrans bench: %s\n", dir.error().c_str());
       return 1;
     }
     auto g = open_gpu(backend);
@@ -615,13 +631,18 @@ int bench(std::vector<std::string> args) {
       }
       for (const json& r : *layers_sweep) results.push_back(r);
     }
-    std::ofstream(out + "/results.json") << results.dump(1) << "\n";
+    auto written = dir->add("results.json", results.dump(1) + "\n");
     // report.md and the plot come from results.json alone (bench/report.py, matplotlib); Debian's python3
-    // has matplotlib, so it is preferred over another python3 earlier on the PATH.
+    // has matplotlib, so it is preferred over another python3 earlier on the PATH. It runs from an
+    // argument vector, so no path is ever read by a shell.
     const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    const std::string command = python + " '" + DSTRANS_SOURCE_DIR + "/bench/report.py' '" + out + "/results.json' '" + out + "'";
-    if (std::system(command.c_str()) != 0) {
-      std::fprintf(stderr, "dstrans bench: the report failed (%s); results.json is written\n", command.c_str());
+    if (written)
+      written = run_program({python, std::string(DSTRANS_SOURCE_DIR) + "/bench/report.py", dir->staging() + "/results.json",
+                             dir->staging()});
+    if (written) written = dir->adopt();
+    if (written) written = dir->commit();
+    if (!written) {
+      std::fprintf(stderr, "dstrans bench: %s; nothing was written into %s\n", written.error().c_str(), out.c_str());
       return 1;
     }
     std::printf("dstrans bench: %zu runs on %s: %s/results.json, report.md, accuracy_vs_time.png\n", results.size(),

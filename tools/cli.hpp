@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "scene_json.hpp"
+
 namespace dstrans::cli {
 
 // A usage error: the message is printed with the subcommand's usage, and the tool exits with 2.
@@ -13,6 +15,15 @@ struct usage_error {
 
 // The value after option `name` in `args` (removing both), or `fallback` when absent.
 std::string take_option(std::vector<std::string>& args, const std::string& name, const std::string& fallback);
+
+// Whether flag `name` is in `args` (removing it).
+bool take_flag(std::vector<std::string>& args, const std::string& name);
+// What is left of `args` once every known option is taken: the operands, or a usage_error naming the first
+// unknown option.
+std::vector<std::string> operands(const std::vector<std::string>& args);
+
+// The resource budget of --budget MIB (scene_json.hpp's scene_budget; 1024 MiB when absent).
+scene_budget take_budget(std::vector<std::string>& args);
 
 // `text` as a whole number in [lo, hi], or a usage_error naming `what`.
 int to_int(const std::string& text, int lo, int hi, const std::string& what);

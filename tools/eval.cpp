@@ -18,6 +18,7 @@
 
 #include "cli.hpp"
 #include "gpu.hpp"
+#include "json_input.hpp"
 
 namespace dstrans::cli {
 
@@ -40,6 +41,9 @@ json type_json(const value_type& t) {
   return fields;
 }
 
+// Bounds on what one input line may hold: a call is a few hundred bytes.
+constexpr std::size_t max_line = std::size_t(1) << 20, max_label = 1024;
+
 // A value that does not fit its type: the message names where.
 struct bad_value {
   std::string message;
@@ -53,22 +57,26 @@ float to_float(const json& v, const std::string& where) {
     if (s == "inf") return INFINITY;
     if (s == "-inf") return -INFINITY;
   }
-  throw bad_value{where + ": expected a number (or \"nan\", \"inf\", \"-inf\"), got " + v.dump()};
+  throw bad_value{where + ": expected a number (or \"nan\", \"inf\", \"-inf\"), got " + excerpt(v)};
 }
 
 std::int64_t to_integer(const json& v, const std::string& where, std::int64_t lo, std::int64_t hi) {
-  if (v.is_number_integer()) {
+  // An unsigned JSON number (2^64 - 1, say) would wrap in get<std::int64_t>().
+  if (v.is_number_unsigned()) {
+    const std::uint64_t u = v.get<std::uint64_t>();
+    if (u <= std::uint64_t(hi) && std::int64_t(u) >= lo) return std::int64_t(u);
+  } else if (v.is_number_integer()) {
     const std::int64_t i = v.get<std::int64_t>();
     if (i >= lo && i <= hi) return i;
   }
   throw bad_value{where + ": expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
-                  v.dump()};
+                  excerpt(v)};
 }
 
 void pack(const value_type& t, const json& v, const std::string& where, words& out) {
   auto vector_of = [&](int n) {
     if (!v.is_array() || int(v.size()) != n)
-      throw bad_value{where + ": expected " + t.name() + " (an array of " + std::to_string(n) + "), got " + v.dump()};
+      throw bad_value{where + ": expected " + t.name() + " (an array of " + std::to_string(n) + "), got " + excerpt(v)};
   };
   switch (t.kind) {
     case value_kind::float_: put(to_float(v, where), out); return;
@@ -83,11 +91,11 @@ void pack(const value_type& t, const json& v, const std::string& where, words& o
       return;
     case value_kind::uint_: put(unsigned(to_integer(v, where, 0, UINT32_MAX)), out); return;
     case value_kind::bool_:
-      if (!v.is_boolean()) throw bad_value{where + ": expected true or false, got " + v.dump()};
+      if (!v.is_boolean()) throw bad_value{where + ": expected true or false, got " + excerpt(v)};
       put(v.get<bool>(), out);
       return;
     case value_kind::record: {
-      if (!v.is_object()) throw bad_value{where + ": expected an object " + t.name() + ", got " + v.dump()};
+      if (!v.is_object()) throw bad_value{where + ": expected an object " + t.name() + ", got " + excerpt(v)};
       for (const auto& f : t.fields) {
         if (!v.contains(f.first)) throw bad_value{where + ": missing field '" + f.first + "'"};
         pack(f.second, v[f.first], where + "." + f.first, out);
@@ -188,12 +196,8 @@ int eval(std::vector<std::string> args) {
   }
   try {
     const std::string backend = take_option(args, "--backend", "");
-    bool listing = false, as_json = false;
-    for (const std::string& a : args) {
-      if (a == "--list") listing = true;
-      else if (a == "--json") as_json = true;
-      else throw usage_error{"unknown argument '" + a + "'"};
-    }
+    const bool listing = take_flag(args, "--list"), as_json = take_flag(args, "--json");
+    for (const std::string& a : operands(args)) throw usage_error{"unknown argument '" + a + "'"};
     if (listing) return list(as_json);
     if (as_json) throw usage_error{"--json goes with --list"};
     if (backend.empty()) throw usage_error{"eval needs --backend cpu, gl or vk"};
@@ -217,12 +221,20 @@ int eval(std::vector<std::string> args) {
       if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
       call c;
       try {
-        const json in = json::parse(line);
+        if (line.size() > max_line) throw bad_value{"longer than " + std::to_string(max_line) + " bytes"};
+        const json in = parse_bounded<json>(line);
         if (!in.is_object() || !in.contains("fn") || !in["fn"].is_string()) throw bad_value{"expected {\"fn\": NAME, \"args\": {...}}"};
+        const std::string& fn = in["fn"].get_ref<const std::string&>();
+        if (fn.size() > max_label) throw bad_value{"fn: " + excerpt(in["fn"]) + " is no formula's name"};
         c.fn = in["fn"];
-        if (in.contains("case")) c.label = in["case"];
-        c.f = find_formula(in["fn"].get<std::string>());
-        if (!c.f) throw bad_value{"unknown formula '" + in["fn"].get<std::string>() + "' (see dstrans eval --list)"};
+        if (in.contains("case")) {
+          const json& label = in["case"];
+          if (!label.is_string() || label.get_ref<const std::string&>().size() > max_label)
+            throw bad_value{"case: expected a string of at most " + std::to_string(max_label) + " bytes, got " + excerpt(label)};
+          c.label = label;
+        }
+        c.f = find_formula(fn);
+        if (!c.f) throw bad_value{"unknown formula '" + fn + "' (see dstrans eval --list)"};
         const json a = in.contains("args") ? in["args"] : json::object();
         if (!a.is_object()) throw bad_value{"args: expected an object"};
         words packed;
@@ -240,7 +252,10 @@ int eval(std::vector<std::string> args) {
         batch.first.insert(batch.first.end(), packed.begin(), packed.end());
       } catch (const json::exception& e) {
         c.f = nullptr;
-        c.error = "line " + std::to_string(number) + ": not JSON: " + e.what();
+        c.error = "line " + std::to_string(number) + ": not JSON: " + parse_message(e);
+      } catch (const json_too_big& e) {
+        c.f = nullptr;
+        c.error = "line " + std::to_string(number) + ": not a call: its JSON is " + e.message;
       } catch (const bad_value& e) {
         c.f = nullptr;
         c.error = "line " + std::to_string(number) + ": " + e.message;

@@ -54,6 +54,15 @@ volume shape_of(const light& l) {
 
 }  // namespace
 
+result<bool> fits_device(const options& o, int largest) {
+  const int wanted = std::max({o.width, o.height, o.shadow_size});
+  if (wanted > largest)
+    return failure{"a " + std::to_string(o.width) + "x" + std::to_string(o.height) + " frame with a " +
+                   std::to_string(o.shadow_size) + "^2 shadow map needs images " + std::to_string(wanted) +
+                   " texels a side; this device's largest is " + std::to_string(largest)};
+  return true;
+}
+
 volume volume_of(const light& l, const options& o) { return o.fullscreen_lights ? volume::fullscreen : shape_of(l); }
 
 basis particle_basis(const options& o) {

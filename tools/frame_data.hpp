@@ -11,6 +11,7 @@
 #include <dstrans/light_mesh.hpp>
 #include <dstrans/pipeline.hpp>
 #include <dstrans/post.hpp>
+#include <dstrans/result.hpp>
 #include <dstrans/scene.hpp>
 
 namespace dstrans::render {
@@ -91,6 +92,9 @@ struct frame_plan {
   }
 };
 frame_plan plan_of(const scene& s, const options& o);
+// Whether the options' images (the frame and the shadow map) fit a device whose images and viewports are
+// at most `largest` texels a side: checked by both renderers before they allocate anything.
+result<bool> fits_device(const options& o, int largest);
 // The light whose shadow map the hair reads (Eq. 1): the last one drawn, as the maps share targets; -1: none.
 int hair_shadow_light(const frame_plan& p);
 // The names the command line, the benchmark and the viewer give techniques, shadows and k-buffer variants.

@@ -2,10 +2,6 @@
 #include "frame_output.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -76,19 +72,17 @@ layer_counts count_layers(const frame& f) {
   return c;
 }
 
-result<bool> write_frame(const frame& f, const std::string& dir, const std::string& technique, const std::string& backend) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) return failure{dir + ": cannot create the output folder: " + ec.message()};
-  auto png = [&](const std::string& name, const image& img) -> result<bool> {
-    const std::string path = dir + "/" + name + ".png";
-    if (!stbi_write_png(path.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4))
-      return failure{path + ": cannot write the image"};
-    return true;
-  };
-  if (auto ok = png("final", f.final_image); !ok) return ok;
+std::string png_bytes(const image& img) {
+  std::string out;
+  stbi_write_png_to_func([](void* context, void* data, int size) { static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size)); },
+                         &out, img.width, img.height, 4, img.rgba.data(), img.width * 4);
+  return out;
+}
+
+result<bool> write_frame(const frame& f, output_dir& out, const std::string& technique, const std::string& backend) {
+  if (auto ok = out.add("final.png", png_bytes(f.final_image)); !ok) return ok;
   for (const auto& [name, img] : f.buffers)
-    if (auto ok = png(name, img); !ok) return ok;
+    if (auto ok = out.add(name + ".png", png_bytes(img)); !ok) return ok;
   nlohmann::ordered_json j{{"technique", technique}, {"backend", backend}, {"width", f.final_image.width},
                            {"height", f.final_image.height}, {"pass_ms", f.pass_ms}, {"frame_ms", f.frame_ms},
                            {"frame_ms_spread", f.frame_ms_spread}, {"frames", f.frames}};
@@ -97,9 +91,7 @@ result<bool> write_frame(const frame& f, const std::string& dir, const std::stri
     j["kbuffer"] = {{"nodes", f.kbuffer_nodes.size()}, {"overflow", f.kbuffer_overflow}, {"pixels", c.pixels},
                     {"mean_layers", c.mean}, {"max_layers", c.max}};
   }
-  std::ofstream out(dir + "/frame.json");
-  out << j.dump(2) << "\n";
-  if (!out) return failure{dir + "/frame.json: cannot write: " + std::strerror(errno)};
+  out.set_manifest(std::move(j));
   return true;
 }
 

@@ -13,6 +13,8 @@
 #include <dstrans/format.hpp>
 #include <dstrans/result.hpp>
 
+#include "output_dir.hpp"
+
 namespace dstrans::render {
 
 // 8-bit RGBA, rows from the top.
@@ -63,7 +65,10 @@ enum class view_as { rgb, alpha, depth };
 image to_image(const std::vector<texel>& texels, format f, int width, int height, view_as how, float near_plane = 0.1f,
                float far_plane = 100.0f);
 
-// Writes final.png, one PNG per buffer and frame.json into `dir` (created if missing).
-result<bool> write_frame(const frame& f, const std::string& dir, const std::string& technique, const std::string& backend);
+// `img` as the bytes of a PNG file.
+std::string png_bytes(const image& img);
+
+// Adds final.png and one PNG per buffer to `out`, and frame.json's fields as its manifest (commit() writes it).
+result<bool> write_frame(const frame& f, output_dir& out, const std::string& technique, const std::string& backend);
 
 }  // namespace dstrans::render

@@ -1,15 +1,15 @@
 // dstrans gen: prints the GLSL that the templates generate, ready for glslangValidator as it is.
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <dstrans/dstrans.hpp>
 
 #include "cli.hpp"
+#include "output_dir.hpp"
 #include "passes.hpp"
 #include "scene_json.hpp"
 
@@ -68,8 +68,17 @@ const typename Table::mapped_type& pick(const Table& table, const std::string& k
   return it->second;
 }
 
-// The shaders of the scene in `file`'s pipeline, printed or written into `out`.
+// The shaders of the scene in `file`'s pipeline, printed or written into `out` (pipeline.json lists them).
 int gen_pipeline(const std::string& file, const std::string& out) {
+  std::optional<output_dir> dir;
+  if (!out.empty()) {
+    auto d = output_dir::open(out, "pipeline.json");
+    if (!d) {
+      std::fprintf(stderr, "dstrans gen: %s\n", d.error().c_str());
+      return 1;
+    }
+    dir.emplace(std::move(*d));
+  }
   const auto s = load_scene(file);
   if (!s) {
     std::fprintf(stderr, "dstrans gen: %s\n", s.error().c_str());
@@ -81,24 +90,26 @@ int gen_pipeline(const std::string& file, const std::string& out) {
     std::fprintf(stderr, "dstrans gen: %s\n", passes.error().c_str());
     return 1;
   }
-  if (!out.empty()) std::filesystem::create_directories(out);
   for (const render::named_pass& p : *passes) {
     std::string stem = p.name;
     for (char& c : stem) c = c == ' ' ? '_' : c;
     for (const auto& [stage, src] : {std::make_pair(".vert", &p.sources.vertex), std::make_pair(".frag", &p.sources.fragment)}) {
-      if (out.empty()) {
+      if (!dir) {
         std::printf("// ---- %s%s\n%s\n", stem.c_str(), stage, src->str().c_str());
         continue;
       }
-      const std::string path = out + "/" + stem + stage;
-      std::ofstream f(path);
-      if (!(f << src->str())) {
-        std::fprintf(stderr, "dstrans gen: cannot write %s\n", path.c_str());
+      if (auto ok = dir->add(stem + stage, src->str()); !ok) {
+        std::fprintf(stderr, "dstrans gen: %s\n", ok.error().c_str());
         return 1;
       }
     }
   }
-  if (!out.empty()) std::printf("dstrans gen: %zu shaders in %s\n", 2 * passes->size(), out.c_str());
+  if (!dir) return 0;
+  if (auto ok = dir->commit(); !ok) {
+    std::fprintf(stderr, "dstrans gen: %s\n", ok.error().c_str());
+    return 1;
+  }
+  std::printf("dstrans gen: %zu shaders in %s\n", 2 * passes->size(), out.c_str());
   return 0;
 }
 
@@ -119,6 +130,7 @@ int gen(std::vector<std::string> args) {
   try {
     const std::string side = take_option(args, "--side", ""), location = take_option(args, "--first-location", ""),
                       binding = take_option(args, "--first-binding", ""), out = take_option(args, "--out", "");
+    args = operands(args);
     if (args.size() == 2 && args[0] == "pipeline") {
       if (!(side + location + binding).empty()) throw usage_error{"gen pipeline takes only --out"};
       return gen_pipeline(args[1], out);

@@ -1,4 +1,5 @@
 // The dstrans command line (DESIGN.md, "The dstrans command line").
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -26,10 +27,34 @@ std::string take_option(std::vector<std::string>& args, const std::string& name,
     if (args[i] != name) continue;
     if (i + 1 >= args.size()) throw usage_error{"option " + name + " needs a value"};
     std::string value = args[i + 1];
+    // A value that looks like an option is the value forgotten ("--out --float-targets").
+    if (value.rfind("--", 0) == 0) throw usage_error{"option " + name + " needs a value, not the option '" + value + "'"};
     args.erase(args.begin() + long(i), args.begin() + long(i) + 2);
+    if (std::find(args.begin(), args.end(), name) != args.end()) throw usage_error{"option " + name + " is given twice"};
     return value;
   }
   return fallback;
+}
+
+bool take_flag(std::vector<std::string>& args, const std::string& name) {
+  const auto at = std::find(args.begin(), args.end(), name);
+  if (at == args.end()) return false;
+  args.erase(at);
+  if (std::find(args.begin(), args.end(), name) != args.end()) throw usage_error{"option " + name + " is given twice"};
+  return true;
+}
+
+std::vector<std::string> operands(const std::vector<std::string>& args) {
+  for (const std::string& a : args)
+    if (a.rfind("--", 0) == 0) throw usage_error{"unknown option '" + a + "'"};
+  return args;
+}
+
+scene_budget take_budget(std::vector<std::string>& args) {
+  scene_budget b;
+  const std::string mib = take_option(args, "--budget", "");
+  if (!mib.empty()) b.bytes = std::size_t(to_int(mib, 1, 1 << 20, "--budget")) << 20;
+  return b;
 }
 
 int to_int(const std::string& text, int lo, int hi, const std::string& what) {

@@ -212,6 +212,14 @@ std::uint32_t kbuffer_capacity(const options& o) {
   return std::uint32_t(kbuffer_nodes_per_pixel) * std::uint32_t(o.width) * std::uint32_t(o.height);
 }
 
+std::size_t frame_bytes(const frame_plan& p, const options& o) {
+  const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
+  std::size_t bytes = std::size_t(p.pipeline.bytes_per_pixel) * pixels * std::size_t(std::max(p.layers, 1));
+  if (p.shadows != shadow_mode::off) bytes += std::size_t(o.shadow_size) * std::size_t(o.shadow_size) * 8u;
+  if (p.on.has(effect::many_layers)) bytes += std::size_t(kbuffer_capacity(o)) * 16u + pixels * 4u;
+  return bytes;
+}
+
 std::vector<target_desc> kbuffer_tail_targets() {
   return {{format::rgba16f, {"tail.r", "tail.g", "tail.b", "tail.alpha"}}, {format::r16f, {"optical_depth"}}};
 }

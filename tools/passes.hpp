@@ -60,6 +60,8 @@ result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows, c
 result<pass_sources> resolve_pass(const std::string& dir, shadow_mode shadows, const options& o);
 // Its node pool's size and tail targets.
 std::uint32_t kbuffer_capacity(const options& o);
+// The bytes of a frame's render targets, shadow maps and k-buffer lists, for the resource budget.
+std::size_t frame_bytes(const frame_plan& p, const options& o);
 std::vector<target_desc> kbuffer_tail_targets();
 // Texture bindings of the tail targets in the resolve pass; image and buffer bindings of the lists.
 constexpr int kbuffer_tail_binding = 14, kbuffer_nodes_binding = 23, kbuffer_heads_binding = 24;

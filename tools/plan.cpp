@@ -19,7 +19,7 @@ namespace {
 using json = nlohmann::ordered_json;
 
 const char* const usage =
-    "usage: dstrans plan <scene.json> [--json]\n"
+    "usage: dstrans plan <scene.json> [--json] [--budget MIB]\n"
     "the effects the scene calls for (and why), and the passes, render targets and shader switches of the\n"
     "interlaced deferred pipeline that runs exactly those effects\n";
 
@@ -37,15 +37,11 @@ int plan(std::vector<std::string> args) {
     return 0;
   }
   try {
-    bool as_json = false;
-    std::vector<std::string> files;
-    for (const std::string& a : args) {
-      if (a == "--json") as_json = true;
-      else if (a.rfind("--", 0) == 0) throw usage_error{"unknown option '" + a + "'"};
-      else files.push_back(a);
-    }
-    if (files.size() != 1) throw usage_error{"plan takes one scene file"};
-    const auto s = load_scene(files[0]);
+    const bool as_json = take_flag(args, "--json");
+    const scene_budget budget = take_budget(args);
+    const std::vector<std::string> files = operands(args);
+    if (files.size() != 1) throw usage_error{"plan takes one scene file, not " + std::to_string(files.size()) + " arguments"};
+    const auto s = load_scene(files[0], budget);
     if (!s) {
       std::fprintf(stderr, "dstrans plan: %s\n", s.error().c_str());
       return 1;

@@ -7,6 +7,7 @@
 
 #include "cli.hpp"
 #include "gpu.hpp"
+#include "passes.hpp"
 #ifdef DSTRANS_HAVE_GL
 #include "render_gl.hpp"
 #endif
@@ -37,6 +38,8 @@ const char* const usage =
     "       [--interlace rows|columns|checker] [--reconstruct partner|edge-aware]   the interlaced G-buffer's\n"
     "                           predicate, and how the compose pass finds a pixel's other layer\n"
     "       [--layout thesis|compact]   the G-buffer: Table 3.1's 16 bytes, or 8 with depth from the attachment\n"
+    "       [--budget MIB]   the memory a scene and its frame may take (default 1024), estimated before anything\n"
+    "                           is built; a larger scene is refused with its estimate\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png (after the chain), a PNG per buffer and per effect (post_NAME.png), and DIR/frame.json\n";
@@ -99,10 +102,11 @@ int render(std::vector<std::string> args) {
     if (shadows == "off") o.shadows = render::shadow_mode::off;
     else if (shadows == "opaque") o.shadows = render::shadow_mode::opaque;
     else if (shadows != "transparent") throw usage_error{"--shadows must be off, opaque or transparent, not '" + shadows + "'"};
-    const auto flag = std::find(args.begin(), args.end(), "--float-targets");
-    o.float_targets = flag != args.end();
-    if (o.float_targets) args.erase(flag);
-    if (args.size() != 1) throw usage_error{"render takes one scene file"};
+    o.float_targets = take_flag(args, "--float-targets");
+    const scene_budget budget = take_budget(args);
+    args = operands(args);
+    if (args.size() != 1)
+      throw usage_error{"render takes one scene file, not " + std::to_string(args.size()) + " arguments"};
     if (out.empty()) throw usage_error{"render needs --out DIR"};
     if (technique == "peeling") o.method = render::technique::peeling;
     else if (technique == "forward") o.method = render::technique::forward;
@@ -110,9 +114,20 @@ int render(std::vector<std::string> args) {
     else if (technique != "interlaced")
       throw usage_error{"unknown technique '" + technique + "' (known: interlaced, peeling, forward, forward-depth)"};
     if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
-    auto s = load_scene(args[0]);
+    // The folder is checked before any work: a run that cannot write its outputs stops here.
+    auto dir = output_dir::open(out, "frame.json");
+    if (!dir) {
+      std::fprintf(stderr, "dstrans render: %s\n", dir.error().c_str());
+      return 1;
+    }
+    auto s = load_scene(args[0], budget);
     if (!s) {
       std::fprintf(stderr, "dstrans render: %s\n", s.error().c_str());
+      return 1;
+    }
+    if (const std::size_t need = scene_bytes(*s) + render::frame_bytes(render::plan_of(*s, o), o); need > budget.bytes) {
+      std::fprintf(stderr, "dstrans render: %s with a %dx%d frame would take about %zu MiB, over the budget of %zu MiB "
+                   "(--budget MIB raises it)\n", args[0].c_str(), o.width, o.height, need >> 20, budget.bytes >> 20);
       return 1;
     }
     if (!post_file.empty()) {
@@ -139,8 +154,10 @@ int render(std::vector<std::string> args) {
       std::fprintf(stderr, "dstrans render: %s\n", f.error().c_str());
       return 1;
     }
-    if (auto ok = render::write_frame(*f, out, technique, backend); !ok) {
-      std::fprintf(stderr, "dstrans render: %s\n", ok.error().c_str());
+    auto written = render::write_frame(*f, *dir, technique, backend);
+    if (written) written = dir->commit();
+    if (!written) {
+      std::fprintf(stderr, "dstrans render: %s\n", written.error().c_str());
       return 1;
     }
     std::printf("dstrans render: %s on %s, %dx%d, %.2f ms: %s/final.png\n", args[0].c_str(), backend.c_str(), o.width, o.height,

@@ -2,6 +2,7 @@
 #include "render_gl.hpp"
 
 #include <dstrans_gl.hpp>
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 
@@ -57,6 +58,10 @@ void bind_light_index(GLuint vao, GLuint indices) {
 }  // namespace
 
 result<frame> render_gl(const scene& s, const options& o, const std::string& shader_dir, const frame_hooks* hooks) {
+  GLint largest = 0, viewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  if (auto ok = fits_device(o, std::min({int(largest), int(viewport[0]), int(viewport[1])})); !ok) return failure{ok.error()};
   resources r;
   gl::state_guard keep;
   const frame_plan plan = plan_of(s, o);

@@ -2,6 +2,7 @@
 // starts with a full memory barrier: the passes read what the one before wrote.
 #include "render_vk.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstring>
 #include <map>
@@ -151,8 +152,15 @@ VkVertexInputAttributeDescription attribute(std::uint32_t location, std::uint32_
 }  // namespace
 
 result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const std::string& shader_dir) {
-  resources r(dev);
   const vk::context& ctx = dev.ctx();
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(ctx.physical_device, &props);
+  const VkPhysicalDeviceLimits& lim = props.limits;
+  if (auto ok = fits_device(o, int(std::min({lim.maxImageDimension2D, lim.maxViewportDimensions[0], lim.maxViewportDimensions[1],
+                                             lim.maxFramebufferWidth, lim.maxFramebufferHeight})));
+      !ok)
+    return failure{ok.error()};
+  resources r(dev);
   const frame_plan plan = plan_of(s, o);
   const shadow_mode mode = plan.shadows;
   const bool any_shadows = mode != shadow_mode::off;

@@ -1,14 +1,21 @@
 // Implements scene_json.hpp with nlohmann-json.
 #include "scene_json.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+
+#include <sys/stat.h>
+
+#include "json_input.hpp"
 
 namespace dstrans {
 
@@ -51,7 +58,7 @@ class reader {
     if (!has(key)) return fallback;
     const json& v = j_[key];
     if (!v.is_array() || v.size() != N)
-      throw bad_field{field(key) + ": expected an array of " + std::to_string(N) + " numbers, got " + v.dump()};
+      throw bad_field{field(key) + ": expected an array of " + std::to_string(N) + " numbers, got " + excerpt(v)};
     glm::vec<N, float> out;
     for (int i = 0; i < N; ++i) out[i] = number_at(v[std::size_t(i)], field(key) + "[" + std::to_string(i) + "]", lo, hi);
     return out;
@@ -61,14 +68,29 @@ class reader {
     require(key);
     return vec<N>(key, glm::vec<N, float>(0.0f), lo, hi);
   }
+  // A whole number in [lo, hi]: 3.7 segments or 0.5 particles are mistakes, not 3 and 0.
+  std::int64_t integer(const std::string& key, std::int64_t fallback, std::int64_t lo, std::int64_t hi) {
+    if (!has(key)) return fallback;
+    const json& v = j_[key];
+    const std::string name = field(key);
+    const double d = v.is_number() ? v.get<double>() : NAN;
+    if (!std::isfinite(d) || d != std::floor(d)) throw bad_field{name + ": expected a whole number, got " + excerpt(v)};
+    if (d < double(lo) || d > double(hi))
+      throw bad_field{name + ": " + excerpt(v) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]"};
+    return std::int64_t(d);
+  }
+  std::int64_t integer(const std::string& key, std::int64_t lo, std::int64_t hi) {
+    require(key);
+    return integer(key, 0, lo, hi);
+  }
   bool boolean(const std::string& key, bool fallback) {
     if (!has(key)) return fallback;
-    if (!j_[key].is_boolean()) throw bad_field{field(key) + ": expected true or false, got " + j_[key].dump()};
+    if (!j_[key].is_boolean()) throw bad_field{field(key) + ": expected true or false, got " + excerpt(j_[key])};
     return j_[key].get<bool>();
   }
   std::string text(const std::string& key) {
     require(key);
-    if (!j_[key].is_string()) throw bad_field{field(key) + ": expected a string, got " + j_[key].dump()};
+    if (!j_[key].is_string()) throw bad_field{field(key) + ": expected a string, got " + excerpt(j_[key])};
     return j_[key].get<std::string>();
   }
   const json& raw(const std::string& key) {
@@ -89,11 +111,11 @@ class reader {
     if (!has(key)) throw bad_field{field(key) + ": missing"};
   }
   static float number_at(const json& v, const std::string& name, float lo, float hi) {
-    if (!v.is_number()) throw bad_field{name + ": expected a number, got " + v.dump()};
+    if (!v.is_number()) throw bad_field{name + ": expected a number, got " + excerpt(v)};
     const double d = v.get<double>();
     if (!std::isfinite(d)) throw bad_field{name + ": must be finite"};
     if (d < lo || d > hi)
-      throw bad_field{name + ": " + v.dump() + " is outside [" + show(lo) + ", " + show(hi) + "]"};
+      throw bad_field{name + ": " + excerpt(v) + " is outside [" + show(lo) + ", " + show(hi) + "]"};
     return float(d);
   }
 
@@ -103,6 +125,27 @@ class reader {
 };
 
 constexpr float big = 1e6f;
+
+std::string mib(std::size_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); }
+
+// The scene's estimated cost so far (scene_budget), checked before each thing is built.
+struct cost {
+  const scene_budget& budget;
+  std::size_t vertices = 0, particles = 0, lights = 0;
+  void add(std::size_t v, std::size_t p, std::size_t l, const std::string& where) {
+    vertices += v;
+    particles += p;
+    lights += l;
+    const std::size_t bytes = vertices * bytes_per_vertex + particles * bytes_per_particle + lights * bytes_per_light;
+    if (bytes > budget.bytes)
+      throw bad_field{where + ": the scene would take about " + mib(bytes) + " MiB by here (" + std::to_string(vertices) +
+                      " vertices, " + std::to_string(particles) + " particles, " + std::to_string(lights) +
+                      " lights), over the budget of " + mib(budget.bytes) + " MiB (--budget MIB raises it)"};
+  }
+};
+
+// The vertices detail::revolve makes of a profile of `points` points turned in `slices` slices.
+std::size_t revolved(std::size_t points, int slices) { return points * std::size_t(slices + 1); }
 
 material read_material(reader& r) {
   material m;
@@ -116,7 +159,7 @@ material read_material(reader& r) {
   return m;
 }
 
-object read_object(reader& r, const std::map<std::string, std::uint32_t>& materials) {
+object read_object(reader& r, const std::map<std::string, std::uint32_t>& materials, cost& spent) {
   object o;
   const std::string kind = r.text("shape");
   const std::string name = r.text("material");
@@ -124,22 +167,35 @@ object read_object(reader& r, const std::map<std::string, std::uint32_t>& materi
   if (it == materials.end()) throw bad_field{r.field("material") + ": unknown material '" + name + "'"};
   o.material = it->second;
   const float tiny = 1e-4f;
-  auto segments = [&] { return int(r.number("segments", 32.0f, 3.0f, 512.0f)); };
-  if (kind == "box") o.geometry = shape_box(r.vec<3>("size", tiny, big));
-  else if (kind == "room") o.geometry = shape_room(r.vec<3>("size", tiny, big));
-  else if (kind == "pane") o.geometry = shape_pane(r.vec<2>("size", tiny, big));
-  else if (kind == "sphere") o.geometry = shape_sphere(r.number("radius", tiny, big), segments());
-  else if (kind == "cylinder") {
+  auto segments = [&] { return int(r.integer("segments", 32, 3, 512)); };
+  // Each shape's vertices are counted (spent.add) before it is built.
+  const std::string where = r.field("shape");
+  if (kind == "box" || kind == "room") {
+    const glm::vec3 size = r.vec<3>("size", tiny, big);
+    spent.add(24, 0, 0, where);
+    o.geometry = kind == "box" ? shape_box(size) : shape_room(size);
+  } else if (kind == "pane") {
+    const glm::vec2 size = r.vec<2>("size", tiny, big);
+    spent.add(4, 0, 0, where);
+    o.geometry = shape_pane(size);
+  } else if (kind == "sphere") {
+    const float radius = r.number("radius", tiny, big);
+    const int n = segments();
+    spent.add(revolved(std::size_t(std::max(n / 2, 2) + 1), n), 0, 0, where);
+    o.geometry = shape_sphere(radius, n);
+  } else if (kind == "cylinder" || kind == "bottle") {
     const float radius = r.number("radius", tiny, big), height = r.number("height", tiny, big);
-    o.geometry = shape_cylinder(radius, height, segments());
-  } else if (kind == "bottle") {
-    const float radius = r.number("radius", tiny, big), height = r.number("height", tiny, big);
-    o.geometry = shape_bottle(radius, height, segments());
+    const int n = segments();
+    spent.add(revolved(kind == "cylinder" ? 6 : 9, n), 0, 0, where);
+    o.geometry = kind == "cylinder" ? shape_cylinder(radius, height, n) : shape_bottle(radius, height, n);
   } else if (kind == "hair") {
     const float radius = r.number("radius", tiny, big), length = r.number("length", tiny, big);
-    const int strands = int(r.number("strands", 1.0f, 100000.0f));
-    o.geometry = shape_hair(radius, strands, length, r.number("width", 0.01f, tiny, big),
-                            int(r.number("segments", 8.0f, 1.0f, 64.0f)), std::uint32_t(r.number("seed", 1.0f, 0.0f, 1e9f)));
+    const int strands = int(r.integer("strands", 1, 100000));
+    const float width = r.number("width", 0.01f, tiny, big);
+    const int pieces = int(r.integer("segments", 8, 1, 64));
+    const auto seed = std::uint32_t(r.integer("seed", 1, 0, 1000000000));
+    spent.add(std::size_t(strands) * std::size_t(pieces) * 8u, 0, 0, where);  // two crossed quads a piece
+    o.geometry = shape_hair(radius, strands, length, width, pieces, seed);
   } else {
     throw bad_field{r.field("shape") + ": unknown shape '" + kind + "' (box, room, pane, sphere, cylinder, bottle, hair)"};
   }
@@ -176,7 +232,7 @@ light read_light(reader& r) {
   return l;
 }
 
-particle_system read_particles(reader& r, const std::map<std::string, std::uint32_t>& materials) {
+particle_system read_particles(reader& r, const std::map<std::string, std::uint32_t>& materials, cost& spent) {
   particle_system ps;
   const std::string name = r.text("material");
   const auto it = materials.find(name);
@@ -187,8 +243,9 @@ particle_system read_particles(reader& r, const std::map<std::string, std::uint3
   ps.radius = r.number("radius", ps.radius, tiny, big);
   ps.height = r.number("height", ps.height, 0.0f, big);
   ps.size = r.number("size", ps.size, tiny, big);
-  ps.count = int(r.number("count", float(ps.count), 0.0f, 1000000.0f));
-  ps.seed = std::uint32_t(r.number("seed", 1.0f, 0.0f, 1e9f));
+  ps.count = int(r.integer("count", ps.count, 0, 1000000));
+  ps.seed = std::uint32_t(r.integer("seed", 1, 0, 1000000000));
+  spent.add(0, std::size_t(ps.count), 0, r.field("count"));
   r.finish();
   return ps;
 }
@@ -206,7 +263,7 @@ post_effect read_post(reader& r) {
     }
   if (!known) throw bad_field{r.field("effect") + ": unknown effect '" + kind + "' (blur, bloom, dof, greyscale, sepia, aa)"};
   if (e.kind == post_kind::blur || e.kind == post_kind::bloom || e.kind == post_kind::depth_of_field) {
-    e.radius = int(r.number("radius", float(e.radius), 0.0f, 64.0f));
+    e.radius = int(r.integer("radius", e.radius, 0, 64));
     e.sigma = r.number("sigma", e.sigma, 0.0f, 64.0f);
   }
   if (e.kind == post_kind::bloom) {
@@ -241,23 +298,26 @@ std::vector<post_effect> read_post_chain(const json& chain, const std::string& p
 
 result<std::vector<post_effect>> parse_post_chain(const std::string& text, const std::string& name) {
   try {
-    const json root = json::parse(text);
+    const json root = parse_bounded<json>(text);
     reader top(root, "");
     auto chain = read_post_chain(top.raw("post"), "post");
     top.finish();
     return chain;
   } catch (const json::exception& e) {
-    return failure{name + ": not valid JSON: " + e.what()};
+    return failure{name + ": not valid JSON: " + parse_message(e)};
+  } catch (const json_too_big& e) {
+    return failure{name + ": not a scene file: its JSON is " + e.message};
   } catch (const bad_field& e) {
     return failure{name + ": " + e.message};
   }
 }
 
-result<scene> parse_scene(const std::string& text, const std::string& name) {
+result<scene> parse_scene(const std::string& text, const std::string& name, const scene_budget& budget) {
   try {
-    const json root = json::parse(text);
+    const json root = parse_bounded<json>(text);
     reader top(root, "");
     scene s;
+    cost spent{budget};
     {
       reader c(top.raw("camera"), "camera");
       s.view.position = c.vec<3>("position", -big, big);
@@ -281,13 +341,14 @@ result<scene> parse_scene(const std::string& text, const std::string& name) {
     if (!objs.is_array() || objs.empty()) throw bad_field{"objects: expected an array with at least one object"};
     for (std::size_t i = 0; i < objs.size(); ++i) {
       reader o(objs[i], "objects[" + std::to_string(i) + "]");
-      s.objects.push_back(read_object(o, materials));
+      s.objects.push_back(read_object(o, materials, spent));
     }
     if (top.has("lights")) {
       const json& lights = root["lights"];
       if (!lights.is_array()) throw bad_field{"lights: expected an array"};
       for (std::size_t i = 0; i < lights.size(); ++i) {
         reader l(lights[i], "lights[" + std::to_string(i) + "]");
+        spent.add(0, 0, 1, "lights[" + std::to_string(i) + "]");
         s.lights.push_back(read_light(l));
       }
     }
@@ -296,21 +357,30 @@ result<scene> parse_scene(const std::string& text, const std::string& name) {
       if (!systems.is_array()) throw bad_field{"particles: expected an array"};
       for (std::size_t i = 0; i < systems.size(); ++i) {
         reader p(systems[i], "particles[" + std::to_string(i) + "]");
-        s.particles.push_back(read_particles(p, materials));
+        s.particles.push_back(read_particles(p, materials, spent));
       }
     }
     if (top.has("post")) s.post = read_post_chain(root["post"], "post");
     top.finish();
     return s;
   } catch (const json::exception& e) {
-    return failure{name + ": not valid JSON: " + e.what()};
+    return failure{name + ": not valid JSON: " + parse_message(e)};
+  } catch (const json_too_big& e) {
+    return failure{name + ": not a scene file: its JSON is " + e.message};
   } catch (const bad_field& e) {
     return failure{name + ": " + e.message};
   }
 }
 
 namespace {
-result<std::string> read_text(const std::string& path, const char* what) {
+result<std::string> read_text(const std::string& path, const char* what, std::size_t limit) {
+  struct stat st {};
+  if (stat(path.c_str(), &st) != 0) return failure{path + ": cannot read the " + what + ": " + std::strerror(errno)};
+  if (S_ISDIR(st.st_mode)) return failure{path + ": a folder, not a " + what};
+  if (!S_ISREG(st.st_mode)) return failure{path + ": not a plain file, so not read as a " + what};
+  if (std::size_t(st.st_size) > limit)
+    return failure{path + ": " + std::to_string(st.st_size) + " bytes, more than a " + what + " may have (" +
+                   std::to_string(limit) + ")"};
   std::ifstream in(path);
   if (!in) return failure{path + ": cannot read the " + what};
   std::ostringstream text;
@@ -319,14 +389,21 @@ result<std::string> read_text(const std::string& path, const char* what) {
 }
 }  // namespace
 
-result<scene> load_scene(const std::string& path) {
-  auto text = read_text(path, "scene file");
+result<scene> load_scene(const std::string& path, const scene_budget& budget) {
+  auto text = read_text(path, "scene file", budget.file_bytes);
   if (!text) return failure{text.error()};
-  return parse_scene(*text, path);
+  return parse_scene(*text, path, budget);
+}
+
+std::size_t scene_bytes(const scene& s) {
+  std::size_t vertices = 0, particles = 0;
+  for (const object& o : s.objects) vertices += o.geometry.positions.size();
+  for (const particle_system& p : s.particles) particles += std::size_t(std::max(p.count, 0));
+  return vertices * bytes_per_vertex + particles * bytes_per_particle + s.lights.size() * bytes_per_light;
 }
 
 result<std::vector<post_effect>> load_post_chain(const std::string& path) {
-  auto text = read_text(path, "post-processing chain");
+  auto text = read_text(path, "post-processing chain", scene_budget{}.file_bytes);
   if (!text) return failure{text.error()};
   return parse_post_chain(*text, path);
 }

@@ -289,6 +289,26 @@ result<words> formula_runner::run(const formula& f, const words& args, std::size
     if (!program) return failure{program.error()};
     it = programs_.emplace(f.name, *program).first;
   }
+  GLint max_groups = 0;
+  GLint64 max_block = 0;
+  glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  const std::size_t chunk = glsl::calls_per_dispatch(f, std::size_t(max_groups), std::size_t(max_block));
+  if (chunk == 0) return failure{"dstrans eval " + f.name + ": one call does not fit this device's storage buffers"};
+  const std::size_t in_words = argument_words(f), out_per_call = std::size_t(f.result.word_count());
+  words out;
+  out.reserve(calls * out_per_call);
+  for (std::size_t first = 0; first < calls; first += chunk) {
+    const std::size_t n = std::min(chunk, calls - first);
+    const words part(args.begin() + long(first * in_words), args.begin() + long((first + n) * in_words));
+    auto r = run_dispatch(it->second, f, part, n);
+    if (!r) return r;
+    out.insert(out.end(), r->begin(), r->end());
+  }
+  return out;
+}
+
+result<words> formula_runner::run_dispatch(GLuint program, const formula& f, const words& args, std::size_t calls) {
   words in;
   in.reserve(args.size() + 1);
   in.push_back(std::uint32_t(calls));
@@ -300,7 +320,7 @@ result<words> formula_runner::run(const formula& f, const words& args, std::size
   glNamedBufferStorage(buffers[1], GLsizeiptr((out_words ? out_words : 1) * 4), nullptr, GL_MAP_READ_BIT);
   {
     state_guard keep;
-    glUseProgram(it->second);
+    glUseProgram(program);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
     glDispatchCompute(GLuint((calls + 63) / 64), 1, 1);

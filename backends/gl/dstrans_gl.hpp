@@ -132,9 +132,11 @@ class formula_runner {
   formula_runner(const formula_runner&) = delete;
   formula_runner& operator=(const formula_runner&) = delete;
   // The packed results of `calls` calls of `f`, whose packed arguments follow each other in `args`.
+  // Batches past the device's dispatch and storage-buffer limits run in several dispatches.
   result<words> run(const formula& f, const words& args, std::size_t calls);
 
  private:
+  result<words> run_dispatch(GLuint program, const formula& f, const words& args, std::size_t calls);
   std::map<std::string, GLuint> programs_;
 };
 

@@ -582,6 +582,24 @@ result<words> device::run_formula(const formula& f, const words& args, std::size
     if (!p) return failure{p.error()};
     it = formula_pipelines_.emplace(f.name, *p).first;
   }
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(ctx_.physical_device, &props);
+  const std::size_t chunk = glsl::calls_per_dispatch(f, props.limits.maxComputeWorkGroupCount[0], props.limits.maxStorageBufferRange);
+  if (chunk == 0) return failure{"dstrans eval " + f.name + ": one call does not fit this device's storage buffers"};
+  const std::size_t in_words = argument_words(f);
+  words out;
+  out.reserve(calls * std::size_t(f.result.word_count()));
+  for (std::size_t first = 0; first < calls; first += chunk) {
+    const std::size_t n = std::min(chunk, calls - first);
+    const words part(args.begin() + long(first * in_words), args.begin() + long((first + n) * in_words));
+    auto r = run_dispatch(it->second, f, part, n);
+    if (!r) return r;
+    out.insert(out.end(), r->begin(), r->end());
+  }
+  return out;
+}
+
+result<words> device::run_dispatch(const pipeline& p, const formula& f, const words& args, std::size_t calls) {
   const std::size_t out_words = calls * std::size_t(f.result.word_count());
   auto in = make_buffer(VkDeviceSize((args.size() + 1) * 4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "dstrans eval in");
   auto out = make_buffer(VkDeviceSize((out_words ? out_words : 1) * 4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "dstrans eval out");
@@ -600,7 +618,7 @@ result<words> device::run_formula(const formula& f, const words& args, std::size
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   ai.descriptorPool = pool;
   ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &it->second.set_layout;
+  ai.pSetLayouts = &p.set_layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
   vkAllocateDescriptorSets(ctx_.device, &ai, &set);
   VkDescriptorBufferInfo infos[2] = {{in->handle, 0, VK_WHOLE_SIZE}, {out->handle, 0, VK_WHOLE_SIZE}};
@@ -615,8 +633,8 @@ result<words> device::run_formula(const formula& f, const words& args, std::size
   }
   vkUpdateDescriptorSets(ctx_.device, 2, writes, 0, nullptr);
   submit([&](VkCommandBuffer cmd) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, it->second.handle);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, it->second.layout, 0, 1, &set, 0, nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &set, 0, nullptr);
     vkCmdDispatch(cmd, std::uint32_t((calls + 63) / 64), 1, 1);
     VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;

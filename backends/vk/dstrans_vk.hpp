@@ -150,9 +150,11 @@ class device {
   void name(VkObjectType type, std::uint64_t handle, const std::string& text);
 
   // The packed results of `calls` calls of `f`, whose packed arguments follow each other in `args`.
+  // Batches past the device's dispatch and storage-buffer limits run in several dispatches.
   result<words> run_formula(const formula& f, const words& args, std::size_t calls);
 
  private:
+  result<words> run_dispatch(const pipeline& p, const formula& f, const words& args, std::size_t calls);
   explicit device(const context& ctx) : ctx_(ctx) {}
   result<std::uint32_t> memory_type(std::uint32_t bits, VkMemoryPropertyFlags flags) const;
   result<std::vector<std::uint8_t>> read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height);

@@ -22,7 +22,9 @@
 #include <dstrans/dstrans.hpp>
 #include <dstrans_gl_context.hpp>  // this example's stand-in for the engine's window and context
 
-#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include "../example_io.hpp"
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION  // stb_image_write.h's definitions, here once
 #include <stb/stb_image_write.h>
 
 namespace engine {
@@ -363,15 +365,27 @@ std::string dstrans_text(bool gbuffer_write, bool shadow_write, bool shadows_rea
 }  // namespace engine
 
 int main(int argc, char** argv) {
+  const char* const usage = "usage: engine_gl [--step 0|1|2|3] [--out image.png]\n";
   int step = 3;
   std::string out = "engine_gl.png";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::string(argv[i]) == "--step") step = std::atoi(argv[i + 1]);
-    else if (std::string(argv[i]) == "--out") out = argv[i + 1];
-  }
-  if (step < 0 || step > 3) {
-    std::fprintf(stderr, "usage: engine_gl [--step 0|1|2|3] [--out image.png]\n");
-    return 2;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::fputs(usage, stdout);
+      return 0;
+    }
+    if ((a == "--step" || a == "--out") && i + 1 >= argc) {
+      std::fprintf(stderr, "engine_gl: %s needs a value\n%s", a.c_str(), usage);
+      return 2;
+    }
+    if (a == "--step") {
+      if (!example::whole_number("--step", argv[++i], 0, 3, step)) return 2;
+    } else if (a == "--out") {
+      out = argv[++i];
+    } else {
+      std::fprintf(stderr, "engine_gl: unknown argument '%s'\n%s", a.c_str(), usage);
+      return 2;
+    }
   }
   auto context = dstrans::gl::headless_context::create();  // the engine's window would be here
   if (!context) {
@@ -486,9 +500,9 @@ int main(int argc, char** argv) {
 
   std::vector<unsigned char> pixels(std::size_t(w * h * 4));
   glGetTextureImage(final_image.colour[0], 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
-  stbi_flip_vertically_on_write(1);  // GL's rows start at the bottom
-  if (!stbi_write_png(out.c_str(), w, h, 4, pixels.data(), w * 4)) {
-    std::fprintf(stderr, "engine_gl: cannot write %s\n", out.c_str());
+  std::string error;
+  if (!example::write_png(out, w, h, pixels.data(), true, error)) {  // flipped: GL's rows start at the bottom
+    std::fprintf(stderr, "engine_gl: %s\n", error.c_str());
     return 1;
   }
   for (const std::string& m : (*context)->debug_messages()) std::fprintf(stderr, "engine_gl: GL: %s\n", m.c_str());

@@ -22,7 +22,9 @@
 #include <dstrans/dstrans.hpp>
 #include <dstrans_spirv.hpp>
 
-#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include "../example_io.hpp"
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION  // stb_image_write.h's definitions, here once
 #include <stb/stb_image_write.h>
 
 namespace engine {
@@ -571,16 +573,27 @@ int main(int argc, char** argv) {
   int step = 3;
   bool validate = false;
   std::string out = "engine_vk.png";
+  const char* const usage = "usage: engine_vk [--step 0|1|2|3] [--out image.png] [--validate]\n";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--validate") validate = true;
-    else if (a == "--step" && i + 1 < argc) step = std::atoi(argv[++i]);
-    else if (a == "--out" && i + 1 < argc) out = argv[++i];
-    else step = -1;
-  }
-  if (step < 0 || step > 3) {
-    std::fprintf(stderr, "usage: engine_vk [--step 0|1|2|3] [--out image.png] [--validate]\n");
-    return 2;
+    if (a == "--help" || a == "-h") {
+      std::fputs(usage, stdout);
+      return 0;
+    }
+    if ((a == "--step" || a == "--out") && i + 1 >= argc) {
+      std::fprintf(stderr, "engine_vk: %s needs a value\n%s", a.c_str(), usage);
+      return 2;
+    }
+    if (a == "--validate") {
+      validate = true;
+    } else if (a == "--step") {
+      if (!example::whole_number("--step", argv[++i], 0, 3, step)) return 2;
+    } else if (a == "--out") {
+      out = argv[++i];
+    } else {
+      std::fprintf(stderr, "engine_vk: unknown argument '%s'\n%s", a.c_str(), usage);
+      return 2;
+    }
   }
   using namespace engine;
   const int w = 320, h = 180, shadow_size = 512;
@@ -840,11 +853,10 @@ int main(int argc, char** argv) {
   si.pCommandBuffers = &cmd;
   CHECK_VK(vkQueueSubmit(g.queue, 1, &si, VK_NULL_HANDLE));
   CHECK_VK(vkQueueWaitIdle(g.queue));
-  if (!stbi_write_png(out.c_str(), w, h, 4, readback.mapped, w * 4)) {
-    std::fprintf(stderr, "engine_vk: cannot write %s\n", out.c_str());
-    return 1;
-  }
-  // Tear down: everything the engine made, in reverse.
+  std::string error;
+  const bool written = example::write_png(out, w, h, readback.mapped, false, error);
+  if (!written) std::fprintf(stderr, "engine_vk: %s\n", error.c_str());
+  // Tear down: everything the engine made, in reverse (a failed write too).
   vkDeviceWaitIdle(g.device);
   for (VkPipeline p : {geometry, shadow, lighting, compose})
     if (p) vkDestroyPipeline(g.device, p, nullptr);
@@ -875,6 +887,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "engine_vk: %d validation messages\n", validation_messages);
     return 1;
   }
+  if (!written) return 1;
   std::printf("engine_vk: step %d: %s\n", step, out.c_str());
   return 0;
 }

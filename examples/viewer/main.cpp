@@ -21,6 +21,8 @@
 #include <GLFW/glfw3.h>
 #include <stb/stb_image_write.h>
 
+#include "../example_io.hpp"
+
 #include <render_gl.hpp>
 #include <scene_json.hpp>
 
@@ -108,24 +110,30 @@ int main(int argc, char** argv) {
   int frames = 0, width = 960, height = 540;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--out" && i + 1 < argc) {
+    const bool valued = a == "--out" || a == "--frames" || a == "--width" || a == "--height";
+    if (a == "--help" || a == "-h") {
+      std::fputs(usage, stdout);
+      return 0;
+    }
+    if (valued && i + 1 >= argc) {
+      std::fprintf(stderr, "viewer: %s needs a value\n%s", a.c_str(), usage);
+      return 2;
+    }
+    if (a == "--out") {
       out = argv[++i];
-    } else if ((a == "--frames" || a == "--width" || a == "--height") && i + 1 < argc) {
-      const int v = std::atoi(argv[++i]);
-      (a == "--frames" ? frames : a == "--width" ? width : height) = v;
-      if (v < 1) {
-        std::fprintf(stderr, "viewer: %s must be a whole number of at least 1\n%s", a.c_str(), usage);
-        return 2;
-      }
-    } else if (file.empty() && a.rfind("--", 0) != 0) {
+    } else if (valued) {
+      // The renderer's largest image, as dstrans render's (a window past the display's limits is an X error).
+      int& v = a == "--frames" ? frames : a == "--width" ? width : height;
+      if (!example::whole_number(a.c_str(), argv[++i], 1, a == "--frames" ? 100000 : 8192, v)) return 2;
+    } else if (file.empty() && a.rfind("-", 0) != 0) {
       file = a;
     } else {
-      std::fputs(usage, stderr);
+      std::fprintf(stderr, "viewer: %s '%s'\n%s", file.empty() ? "unknown argument" : "one scene only, not also", a.c_str(), usage);
       return 2;
     }
   }
   if (file.empty() || (!out.empty() && frames == 0)) {
-    std::fputs(usage, stderr);
+    std::fprintf(stderr, "viewer: %s\n%s", file.empty() ? "which scene?" : "--out needs --frames N (the frame to keep)", usage);
     return 2;
   }
   const auto s = load_scene(file);
@@ -149,6 +157,13 @@ int main(int argc, char** argv) {
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(0);
+  GLint largest = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
+  if (width > largest || height > largest) {
+    std::fprintf(stderr, "viewer: %dx%d is larger than this GL's largest image (%d)\n", width, height, int(largest));
+    glfwTerminate();
+    return 1;
+  }
 
   viewer_state st;
   st.now.o.width = width;
@@ -162,6 +177,7 @@ int main(int argc, char** argv) {
   glfwSetScrollCallback(window, on_scroll);
 
   int drawn = 0;
+  bool failed = false;  // a window picture that could not be written
   std::string title;
   render::frame_hooks hooks;
   hooks.before = [&](int frame, camera& view) {
@@ -179,9 +195,11 @@ int main(int argc, char** argv) {
       glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
       glReadBuffer(GL_BACK);
       glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-      stbi_flip_vertically_on_write(1);
-      if (!stbi_write_png(out.c_str(), width, height, 4, pixels.data(), width * 4))
-        std::fprintf(stderr, "viewer: cannot write %s\n", out.c_str());
+      std::string error;
+      if (!example::write_png(out, width, height, pixels.data(), true, error)) {
+        std::fprintf(stderr, "viewer: %s\n", error.c_str());
+        failed = true;
+      }
     }
     glfwSwapBuffers(window);
     double total = 0.0;
@@ -214,5 +232,5 @@ int main(int argc, char** argv) {
   std::printf("%s\n", title.c_str());
   glfwDestroyWindow(window);
   glfwTerminate();
-  return 0;
+  return failed ? 1 : 0;
 }

@@ -11,6 +11,7 @@
 //   dstrans::glsl::add_formula_kernel(cs, *f);   // the same call on a GPU, over many inputs
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cmath>
 #include <cstring>
@@ -465,11 +466,17 @@ inline const std::vector<formula>& formulas() {
   return all;
 }
 
+// The words of one call's packed arguments.
+inline std::size_t argument_words(const formula& f) {
+  std::size_t n = 0;
+  for (const auto& a : f.args) n += std::size_t(a.second.word_count());
+  return n;
+}
+
 // The packed results of `calls` calls of `f` on the CPU, whose packed arguments follow each other in
 // `args` (the same contract as the backends' GPU runners).
 inline words run_cpu(const formula& f, const words& args, std::size_t calls) {
-  std::size_t in_words = 0;
-  for (const auto& a : f.args) in_words += std::size_t(a.second.word_count());
+  const std::size_t in_words = argument_words(f);
   words out;
   out.reserve(calls * std::size_t(f.result.word_count()));
   for (std::size_t i = 0; i < calls; ++i) {
@@ -529,6 +536,15 @@ inline void store_value(const value_type& t, const std::string& from, int& at, s
       for (int k = 0; k < t.word_count(); ++k) code += word(k) + "floatBitsToUint(" + from + comp[k] + ");\n";
   }
   at += t.word_count();
+}
+
+// How many calls of f one dispatch of add_formula_kernel's shader may take on a device whose dispatches
+// have at most `max_groups` groups along x and whose storage buffers hold at most `max_buffer_bytes`:
+// GPU runners split larger batches into dispatches of this many calls (0: not even one fits).
+inline std::size_t calls_per_dispatch(const formula& f, std::size_t max_groups, std::size_t max_buffer_bytes) {
+  const std::size_t words = std::max<std::size_t>({argument_words(f), std::size_t(f.result.word_count()), 1});
+  const std::size_t by_buffer = max_buffer_bytes / 4 > 1 ? (max_buffer_bytes / 4 - 1) / words : 0;
+  return std::min(max_groups * 64, by_buffer);
 }
 
 // A compute shader (64 invocations a group) that calls formula f once per input. Buffer `in_binding`

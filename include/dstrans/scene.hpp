@@ -60,7 +60,15 @@ struct camera {
   float fov_y = 60.0f;  // degrees
   float near_plane = 0.1f, far_plane = 100.0f;
 
-  glm::mat4 view() const { return glm::lookAtRH(position, target, glm::vec3(0.0f, 1.0f, 0.0f)); }
+  // +Y is up, except for a camera looking straight up or down (where "up" along the view says nothing):
+  // then the image's top points along -Z looking down and +Z looking up, as if the camera had tilted there
+  // from looking along -Z.
+  glm::vec3 up() const {
+    const glm::vec3 d = target - position;
+    const float side = glm::length(glm::vec2(d.x, d.z));
+    return side > 1e-4f * std::fabs(d.y) ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(0.0f, 0.0f, d.y < 0.0f ? -1.0f : 1.0f);
+  }
+  glm::mat4 view() const { return glm::lookAtRH(position, target, up()); }
   // Depth 0 at the near plane and 1 at the far plane, clip-space y up: what both backends draw with.
   glm::mat4 projection(float aspect) const {
     return glm::perspectiveRH_ZO(glm::radians(fov_y), aspect, near_plane, far_plane);

@@ -94,6 +94,7 @@ TEST_CASE("gen pipeline writes each shader of the plan, each accepted by glslang
   REQUIRE(r.status == 0);
   std::set<std::string> names;
   for (const auto& e : std::filesystem::directory_iterator(out)) {
+    if (e.path().filename() == "pipeline.json") continue;  // the list of what gen wrote, checked below
     names.insert(e.path().filename().string());
     const std::string cmd = std::string(GLSLANG_VALIDATOR) + " " + e.path().string() + " > /dev/null";
     INFO(e.path());
@@ -104,6 +105,11 @@ TEST_CASE("gen pipeline writes each shader of the plan, each accepted by glslang
                                        "light_pass_transparent_shadows_volume.vert",
                                        "light_pass_transparent_shadows_volume.frag", "compose_pass.vert",
                                        "compose_pass.frag"});
+  std::ifstream manifest(out + "/pipeline.json");
+  REQUIRE(manifest);
+  const auto listed = nlohmann::json::parse(manifest)["files"].get<std::set<std::string>>();
+  names.insert("pipeline.json");
+  CHECK(listed == names);
 }
 
 TEST_CASE("docs/hooks.md names every shared formula, and docs/integration.md's pictures exist", "[cli][docs]") {

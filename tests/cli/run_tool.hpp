@@ -21,12 +21,13 @@ struct run_result {
   std::string out;
 };
 
-// Runs the dstrans tool with `args`, feeding `input` on stdin.
-inline run_result run(const std::string& args, const std::string& input) {
+// Runs the dstrans tool with `args`, feeding `input` on stdin; `prefix` goes before it on the shell's
+// command line (variables for its environment, or commands such as "ulimit -f 8;").
+inline run_result run(const std::string& args, const std::string& input, const std::string& prefix = "") {
   // One file per process: CTest runs test cases in parallel.
   const std::string in_path = std::string(DSTRANS_TEST_DIR) + "/eval_input_" + std::to_string(getpid()) + ".jsonl";
   std::ofstream(in_path) << input;
-  const std::string cmd = std::string(DSTRANS_TOOL) + " " + args + " < " + in_path + " 2>&1";
+  const std::string cmd = prefix + " " + std::string(DSTRANS_TOOL) + " " + args + " < " + in_path + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   REQUIRE(pipe);
   std::string out;
