@@ -3,7 +3,8 @@
 // implementation the example's main.cpp holds).
 //
 //   int step = 3;
-//   if (!example::whole_number("--step", argv[i + 1], 0, 3, step)) return 2;   // "--step must be ..."
+//   std::string out = "engine.png";
+//   if (int stop = example::engine_arguments(argc, argv, "engine", usage, step, out); stop >= 0) return stop;
 //   std::string error;
 //   if (!example::write_png(out, w, h, pixels, true, error)) { std::fprintf(stderr, "%s\n", error.c_str()); return 1; }
 #pragma once
@@ -33,6 +34,34 @@ inline bool whole_number(const char* option, const char* text, int lo, int hi, i
   }
   out = int(v);
   return true;
+}
+
+// The engines' command line: [--step 0|1|2|3] [--out image.png], and [--validate] where `validate` is
+// given. Returns -1 to go on, or the exit code to stop with (0 after --help, 2 after a bad argument).
+inline int engine_arguments(int argc, char** argv, const char* name, const char* usage, int& step, std::string& out,
+                            bool* validate = nullptr) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::fputs(usage, stdout);
+      return 0;
+    }
+    if ((a == "--step" || a == "--out") && i + 1 >= argc) {
+      std::fprintf(stderr, "%s: %s needs a value\n%s", name, a.c_str(), usage);
+      return 2;
+    }
+    if (validate && a == "--validate") {
+      *validate = true;
+    } else if (a == "--step") {
+      if (!whole_number("--step", argv[++i], 0, 3, step)) return 2;
+    } else if (a == "--out") {
+      out = argv[++i];
+    } else {
+      std::fprintf(stderr, "%s: unknown argument '%s'\n%s", name, a.c_str(), usage);
+      return 2;
+    }
+  }
+  return -1;
 }
 
 // Writes a `width` x `height` RGBA8 image (rows from the top; `flip`: from the bottom, as GL reads them)

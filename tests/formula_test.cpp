@@ -164,3 +164,26 @@ TEST_CASE("light meshes are closed, wound outwards, and enclose their unit shape
 TEST_CASE("every formula's result is finite and within its physical range for 100,000 inputs (CPU)", "[formula][property]") {
   testing::check_every_property([](const formula& f, const words& a, std::size_t n) -> result<words> { return run_cpu(f, a, n); });
 }
+
+TEST_CASE("GPU runners' batches split at the device's limits and come back whole, in order", "[formula]") {
+  const formula* f = find_formula("dst_light_reach");
+  REQUIRE(f);
+  const std::size_t words_per_call = argument_words(*f);
+  CHECK(words_per_call > 4);
+  // The group limit, then the buffer limit (one word of the buffer is the call count), then nothing.
+  CHECK(glsl::calls_per_dispatch(*f, 10, std::size_t(1) << 30) == 640);
+  CHECK(glsl::calls_per_dispatch(*f, 1000, 4 * (1 + 3 * words_per_call)) == 3);
+  CHECK(glsl::calls_per_dispatch(*f, 1000, 4) == 0);
+  const std::size_t calls = 1000;
+  const words args = testing::random_args(*f, calls, 3u);
+  std::vector<std::size_t> sizes;
+  const auto split = glsl::run_in_dispatches(*f, args, calls, 4, std::size_t(1) << 30, [&](const words& part, std::size_t n) {
+    sizes.push_back(n);
+    return result<words>(run_cpu(*f, part, n));
+  });
+  REQUIRE(split);
+  CHECK(*split == run_cpu(*f, args, calls));
+  CHECK(sizes == std::vector<std::size_t>{256, 256, 256, 232});
+  const auto none = glsl::run_in_dispatches(*f, args, calls, 4, 4, [&](const words&, std::size_t) { return result<words>(words{}); });
+  CHECK_FALSE(none);
+}

@@ -42,7 +42,8 @@ const char* const usage =
     "                           is built; a larger scene is refused with its estimate\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
-    "writes DIR/final.png (after the chain), a PNG per buffer and per effect (post_NAME.png), and DIR/frame.json\n";
+    "writes DIR/final.png (after the chain), a PNG per buffer and per effect (post_NAME.png), and DIR/frame.json\n"
+    "(which lists them); files are written whole and moved in at the end, and only an earlier run's are replaced\n";
 }  // namespace
 
 int render(std::vector<std::string> args) {

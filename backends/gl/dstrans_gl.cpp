@@ -293,19 +293,8 @@ result<words> formula_runner::run(const formula& f, const words& args, std::size
   GLint64 max_block = 0;
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-  const std::size_t chunk = glsl::calls_per_dispatch(f, std::size_t(max_groups), std::size_t(max_block));
-  if (chunk == 0) return failure{"dstrans eval " + f.name + ": one call does not fit this device's storage buffers"};
-  const std::size_t in_words = argument_words(f), out_per_call = std::size_t(f.result.word_count());
-  words out;
-  out.reserve(calls * out_per_call);
-  for (std::size_t first = 0; first < calls; first += chunk) {
-    const std::size_t n = std::min(chunk, calls - first);
-    const words part(args.begin() + long(first * in_words), args.begin() + long((first + n) * in_words));
-    auto r = run_dispatch(it->second, f, part, n);
-    if (!r) return r;
-    out.insert(out.end(), r->begin(), r->end());
-  }
-  return out;
+  return glsl::run_in_dispatches(f, args, calls, std::size_t(max_groups), std::size_t(max_block),
+                                 [&](const words& part, std::size_t n) { return run_dispatch(it->second, f, part, n); });
 }
 
 result<words> formula_runner::run_dispatch(GLuint program, const formula& f, const words& args, std::size_t calls) {

@@ -584,19 +584,8 @@ result<words> device::run_formula(const formula& f, const words& args, std::size
   }
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(ctx_.physical_device, &props);
-  const std::size_t chunk = glsl::calls_per_dispatch(f, props.limits.maxComputeWorkGroupCount[0], props.limits.maxStorageBufferRange);
-  if (chunk == 0) return failure{"dstrans eval " + f.name + ": one call does not fit this device's storage buffers"};
-  const std::size_t in_words = argument_words(f);
-  words out;
-  out.reserve(calls * std::size_t(f.result.word_count()));
-  for (std::size_t first = 0; first < calls; first += chunk) {
-    const std::size_t n = std::min(chunk, calls - first);
-    const words part(args.begin() + long(first * in_words), args.begin() + long((first + n) * in_words));
-    auto r = run_dispatch(it->second, f, part, n);
-    if (!r) return r;
-    out.insert(out.end(), r->begin(), r->end());
-  }
-  return out;
+  return glsl::run_in_dispatches(f, args, calls, props.limits.maxComputeWorkGroupCount[0], props.limits.maxStorageBufferRange,
+                                 [&](const words& part, std::size_t n) { return run_dispatch(it->second, f, part, n); });
 }
 
 result<words> device::run_dispatch(const pipeline& p, const formula& f, const words& args, std::size_t calls) {

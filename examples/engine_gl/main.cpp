@@ -368,25 +368,7 @@ int main(int argc, char** argv) {
   const char* const usage = "usage: engine_gl [--step 0|1|2|3] [--out image.png]\n";
   int step = 3;
   std::string out = "engine_gl.png";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--help" || a == "-h") {
-      std::fputs(usage, stdout);
-      return 0;
-    }
-    if ((a == "--step" || a == "--out") && i + 1 >= argc) {
-      std::fprintf(stderr, "engine_gl: %s needs a value\n%s", a.c_str(), usage);
-      return 2;
-    }
-    if (a == "--step") {
-      if (!example::whole_number("--step", argv[++i], 0, 3, step)) return 2;
-    } else if (a == "--out") {
-      out = argv[++i];
-    } else {
-      std::fprintf(stderr, "engine_gl: unknown argument '%s'\n%s", a.c_str(), usage);
-      return 2;
-    }
-  }
+  if (const int stop = example::engine_arguments(argc, argv, "engine_gl", usage, step, out); stop >= 0) return stop;
   auto context = dstrans::gl::headless_context::create();  // the engine's window would be here
   if (!context) {
     std::fprintf(stderr, "engine_gl: %s\n", context.error().c_str());

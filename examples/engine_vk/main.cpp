@@ -574,27 +574,7 @@ int main(int argc, char** argv) {
   bool validate = false;
   std::string out = "engine_vk.png";
   const char* const usage = "usage: engine_vk [--step 0|1|2|3] [--out image.png] [--validate]\n";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--help" || a == "-h") {
-      std::fputs(usage, stdout);
-      return 0;
-    }
-    if ((a == "--step" || a == "--out") && i + 1 >= argc) {
-      std::fprintf(stderr, "engine_vk: %s needs a value\n%s", a.c_str(), usage);
-      return 2;
-    }
-    if (a == "--validate") {
-      validate = true;
-    } else if (a == "--step") {
-      if (!example::whole_number("--step", argv[++i], 0, 3, step)) return 2;
-    } else if (a == "--out") {
-      out = argv[++i];
-    } else {
-      std::fprintf(stderr, "engine_vk: unknown argument '%s'\n%s", a.c_str(), usage);
-      return 2;
-    }
-  }
+  if (const int stop = example::engine_arguments(argc, argv, "engine_vk", usage, step, out, &validate); stop >= 0) return stop;
   using namespace engine;
   const int w = 320, h = 180, shadow_size = 512;
   gpu g = open_gpu(validate);

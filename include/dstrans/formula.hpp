@@ -547,6 +547,26 @@ inline std::size_t calls_per_dispatch(const formula& f, std::size_t max_groups, 
   return std::min(max_groups * 64, by_buffer);
 }
 
+// `calls` calls of f through `dispatch(args, n)` (one GPU dispatch of n calls), split as
+// calls_per_dispatch allows: for the GPU runners, which query the two limits from their device.
+template <class Dispatch>
+result<words> run_in_dispatches(const formula& f, const words& args, std::size_t calls, std::size_t max_groups,
+                                std::size_t max_buffer_bytes, Dispatch&& dispatch) {
+  const std::size_t chunk = calls_per_dispatch(f, max_groups, max_buffer_bytes);
+  if (chunk == 0) return failure{"dstrans eval " + f.name + ": one call does not fit this device's storage buffers"};
+  const std::size_t in_words = argument_words(f);
+  words out;
+  out.reserve(calls * std::size_t(f.result.word_count()));
+  for (std::size_t first = 0; first < calls; first += chunk) {
+    const std::size_t n = std::min(chunk, calls - first);
+    const words part(args.begin() + long(first * in_words), args.begin() + long((first + n) * in_words));
+    result<words> r = dispatch(part, n);
+    if (!r) return r;
+    out.insert(out.end(), r->begin(), r->end());
+  }
+  return out;
+}
+
 // A compute shader (64 invocations a group) that calls formula f once per input. Buffer `in_binding`
 // holds the call count in word 0, then each call's packed arguments; buffer `out_binding` receives each
 // call's packed result.

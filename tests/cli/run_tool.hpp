@@ -27,7 +27,12 @@ inline run_result run(const std::string& args, const std::string& input, const s
   // One file per process: CTest runs test cases in parallel.
   const std::string in_path = std::string(DSTRANS_TEST_DIR) + "/eval_input_" + std::to_string(getpid()) + ".jsonl";
   std::ofstream(in_path) << input;
-  const std::string cmd = prefix + " " + std::string(DSTRANS_TOOL) + " " + args + " < " + in_path + " 2>&1";
+#ifdef DSTRANS_TOOL_FILTER
+  const std::string tool = std::string(DSTRANS_TOOL_FILTER) + " " + DSTRANS_TOOL;
+#else
+  const std::string tool = DSTRANS_TOOL;
+#endif
+  const std::string cmd = prefix + " " + tool + " " + args + " < " + in_path + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   REQUIRE(pipe);
   std::string out;
