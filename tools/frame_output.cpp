@@ -74,15 +74,22 @@ layer_counts count_layers(const frame& f) {
 
 std::string png_bytes(const image& img) {
   std::string out;
-  stbi_write_png_to_func([](void* context, void* data, int size) { static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size)); },
-                         &out, img.width, img.height, 4, img.rgba.data(), img.width * 4);
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &out, img.width, img.height, 4, img.rgba.data(), img.width * 4)) out.clear();
   return out;
 }
 
 result<bool> write_frame(const frame& f, output_dir& out, const std::string& technique, const std::string& backend) {
-  if (auto ok = out.add("final.png", png_bytes(f.final_image)); !ok) return ok;
+  auto png = [&](const std::string& name, const image& img) -> result<bool> {
+    const std::string bytes = png_bytes(img);
+    if (bytes.empty()) return failure{out.dir() + "/" + name + ".png: the image cannot be encoded"};
+    return out.add(name + ".png", bytes);
+  };
+  if (auto ok = png("final", f.final_image); !ok) return ok;
   for (const auto& [name, img] : f.buffers)
-    if (auto ok = out.add(name + ".png", png_bytes(img)); !ok) return ok;
+    if (auto ok = png(name, img); !ok) return ok;
   nlohmann::ordered_json j{{"technique", technique}, {"backend", backend}, {"width", f.final_image.width},
                            {"height", f.final_image.height}, {"pass_ms", f.pass_ms}, {"frame_ms", f.frame_ms},
                            {"frame_ms_spread", f.frame_ms_spread}, {"frames", f.frames}};

@@ -65,7 +65,7 @@ enum class view_as { rgb, alpha, depth };
 image to_image(const std::vector<texel>& texels, format f, int width, int height, view_as how, float near_plane = 0.1f,
                float far_plane = 100.0f);
 
-// `img` as the bytes of a PNG file.
+// `img` as the bytes of a PNG file (empty if it cannot be encoded).
 std::string png_bytes(const image& img);
 
 // Adds final.png and one PNG per buffer to `out`, and frame.json's fields as its manifest (commit() writes it).

@@ -37,12 +37,12 @@ bool plain_name(const std::string& name) {
 // `ours` says whether it is.
 std::vector<std::string> previous_files(const std::string& path, bool& ours) {
   ours = false;
-  if (what_is(path) != 1) return {};
+  struct stat st {};
+  if (lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_size > (1 << 20)) return {};
   std::ifstream in(path);
   std::ostringstream text;
   text << in.rdbuf();
   const std::string s = text.str();
-  if (s.size() > (1u << 20)) return {};
   const auto j = nlohmann::json::parse(s, nullptr, false);
   if (!j.is_object()) return {};
   ours = true;

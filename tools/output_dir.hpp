@@ -10,7 +10,8 @@
 // lists it, so a user's own files are never overwritten; nothing that is not a plain file (a symbolic
 // link, a device, a folder) is ever replaced or written through; the previous run's files that this run
 // does not write are removed, so the folder holds one run's outputs; a failed write, a full disk or an
-// error before commit() leaves DIR as it was (the staging folder is removed).
+// error before commit() leaves DIR as it was (the staging folder is removed; a run killed outright leaves
+// its .dstrans-* staging folder, which later runs ignore).
 #pragma once
 
 #include <string>
