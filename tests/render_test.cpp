@@ -638,7 +638,7 @@ glm::vec3 hair_lit(const scene& s, const options& o, glm::ivec2 pixel, glm::uvec
   const glm::vec3 world = glm::vec3(h) / h.w, v = glm::normalize(s.view.position - world);
   const glm::vec4 c = shader::dst_unpack_colour(node.z);
   glm::vec3 sum = s.ambient * glm::vec3(c);
-  for (const render::light_block& l : render::light_blocks(s, o)) {
+  for (const render::light_block& l : render::light_blocks(s)) {
     const glm::vec4 reach = shader::dst_light_reach(int(l.direction_kind.w + 0.5f), glm::vec3(l.position_range), glm::vec3(l.direction_kind),
                                                     l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, world);
     sum += shader::dst_hair_full(shader::dst_unpack_tangent(node.y), glm::vec3(reach), v, glm::vec3(c),

@@ -99,7 +99,7 @@ particle_plan particle_plan_of(const scene& s, const frame_plan& p, const option
   out.reference = out.on && o.particles == options::particle_light::forward;
   out.baking = out.on && !out.reference;
   out.atlas = particle_atlas(s, o);
-  const std::vector<light_block> blocks = light_blocks(s, o);
+  const std::vector<light_block> blocks = light_blocks(s);
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const light_block& b = blocks[i];
     const volume_light v{glm::vec4(glm::vec3(b.position_range), b.direction_kind.w),
@@ -188,7 +188,7 @@ std::vector<material_block> material_blocks(const scene& s) {
   return out;
 }
 
-std::vector<light_block> light_blocks(const scene& s, const options&) {
+std::vector<light_block> light_blocks(const scene& s) {
   std::vector<light_block> out;
   const bounds b = scene_bounds(s);
   for (const light& l : s.lights) {

@@ -163,7 +163,7 @@ frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o);
 // The same, seen from spot light `l` of light_blocks (its shadow map's view and projection).
 frame_block light_frame(const scene& s, const light_block& l, const options& o);
 std::vector<material_block> material_blocks(const scene& s);
-std::vector<light_block> light_blocks(const scene& s, const options& o);
+std::vector<light_block> light_blocks(const scene& s);
 // Light volumes: the basis the options pick, the atlas of the scene's particle systems (a region of
 // options::volume_cells cells a side over each system's bounds), and each system's region as the particle
 // pass reads it.

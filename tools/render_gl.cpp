@@ -187,7 +187,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   const GLuint frame_ubo = r.buffer(std::vector<frame_block>{camera}, "camera frame");
   const GLuint shadow_ubo = r.buffer(std::vector<frame_block>{camera}, "light frame");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, materials_binding, r.buffer(material_blocks(s), "materials"));
-  const std::vector<light_block> light_data = light_blocks(s, o);
+  const std::vector<light_block> light_data = light_blocks(s);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lights_binding, r.buffer(light_data, "lights"));
 
   std::vector<gl::targets> gbuffers, light_buffers;

@@ -435,7 +435,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   const vk::targets& shown = post.passes.empty() ? *final_target : post_targets.at(post.output);
 
   // Buffers.
-  const std::vector<light_block> light_data = light_blocks(s, o);
+  const std::vector<light_block> light_data = light_blocks(s);
   frame_block camera = camera_frame(s, o);
   camera.params.z = float(hair_shadow_light(plan));
   const scene_mesh m = flatten(s);
