@@ -41,7 +41,7 @@ inline void check_every_formula(const gpu_runner& gpu) {
 }
 
 // More calls than one dispatch may have on Mesa (65,535 groups of 64): the runner splits them, and every
-// call's result is the CPU's (a dispatch past the limit once returned zeros and no error).
+// call's result is the CPU's (a dispatch past the limit returns zeros and no error).
 inline void check_large_batch(const gpu_runner& gpu) {
   const formula* f = find_formula("dst_unorm8");
   REQUIRE(f);

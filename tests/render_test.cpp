@@ -1324,7 +1324,7 @@ TEST_CASE("forced shadows without a shadowed light leave the smoke as it is, on 
 }
 
 namespace {
-// Whether two light buffers hold the same light in every pixel, and how many pixels are lit at all.
+// How many texels two light buffers differ in, and how many texels a light buffer lights at all.
 std::size_t differing_texels(const std::vector<texel>& a, const std::vector<texel>& b) {
   std::size_t n = 0;
   for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) n += std::memcmp(a[i].data(), b[i].data(), 4) != 0;
@@ -1362,8 +1362,8 @@ std::vector<bool> shadowed_pixels(const frame& with, const frame& without, int c
 TEST_CASE("a light volume lights every pixel it covers, whatever the near plane and wherever the camera is",
           "[render][lights]") {
   // A point light of range 2 and a spot light of range 3.5; the camera looks at the point light from inside
-  // its volume, from its boundary, from just outside the 1.3 R the renderer once took for "may contain the
-  // camera", and from further away, with near planes that cut the volumes or not. Each frame's light
+  // its volume, from its boundary, from just outside 1.3 R (where the volume mesh's corners end), and from
+  // further away, with near planes that cut the volumes or not. Each frame's light
   // buffer equals the one with both lights drawn full screen.
   scene s = example("pane.json");
   s.lights.clear();
