@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
@@ -140,6 +141,50 @@ TEST_CASE("GL and Vulkan render the same image, at even and odd sizes, with ever
         const bool same_glass_rows = g->gbuffer[0] == v->gbuffer[0];  // diffuse and alpha: the same surfaces
         CHECK(same_glass_rows);
       }
+    }
+}
+
+// The recordings of tests/regression/record.sh, made by `dstrans render` with its defaults: each example
+// scene under each technique (and glass_room under the example post chain) at 160x90 on both backends.
+// A change that moves no pixel keeps them; one that means to move some records them again and says why.
+TEST_CASE("every example scene and technique renders as its recording", "[render][regression]") {
+  struct recorded {
+    std::string name, scene;
+    options o;
+    bool post;
+  };
+  std::vector<recorded> cases;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes"))
+    if (entry.path().extension() == ".json")
+      for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward,
+                                  render::technique::forward_depth}) {
+        options o = small(160, 90);
+        o.shadow_size = 1024;  // dstrans render's default
+        o.method = t;
+        const std::string scene = entry.path().filename().string();
+        cases.push_back({entry.path().stem().string() + "_" + render::technique_name(t), scene, o, false});
+      }
+  REQUIRE(cases.size() >= 28);
+  options post = small(160, 90);
+  post.shadow_size = 1024;
+  cases.push_back({"glass_room_post", "glass_room.json", post, true});
+  auto chain = load_post_chain(std::string(DSTRANS_SOURCE_DIR) + "/examples/post_chain.json");
+  REQUIRE(chain);
+  for (backend b : backends)
+    for (const recorded& c : cases) {
+      const std::string file = std::string(DSTRANS_SOURCE_DIR) + "/tests/regression/images/" +
+                         (b == backend::gl ? "gl_" : "vk_") + c.name + ".png";
+      INFO(name(b) << " " << c.name << ": " << file << " (tests/regression/record.sh records it)");
+      auto recording = render::read_png(file);
+      INFO(recording.error());
+      REQUIRE(recording);
+      scene s = example(c.scene);
+      if (c.post) s.post = *chain;
+      auto f = draw(b, s, c.o);
+      if (!f) continue;
+      REQUIRE(f->final_image.width == recording->width);
+      REQUIRE(f->final_image.height == recording->height);
+      CHECK(rmse(f->final_image, *recording) <= 0.5);
     }
 }
 

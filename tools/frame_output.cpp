@@ -1,4 +1,4 @@
-// Implements frame_output.hpp with stb_image_write and nlohmann-json.
+// Implements frame_output.hpp with stb_image, stb_image_write and nlohmann-json.
 #include "frame_output.hpp"
 
 #include <algorithm>
@@ -7,6 +7,9 @@
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include <stb/stb_image.h>
 
 namespace dstrans::render {
 
@@ -78,6 +81,15 @@ std::string png_bytes(const image& img) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
   };
   if (!stbi_write_png_to_func(append, &out, img.width, img.height, 4, img.rgba.data(), img.width * 4)) out.clear();
+  return out;
+}
+
+result<image> read_png(const std::string& path) {
+  int w = 0, h = 0, channels = 0;
+  stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &channels, 4);
+  if (!pixels) return failure{path + ": not a PNG file that can be read (" + stbi_failure_reason() + ")"};
+  image out{w, h, std::vector<std::uint8_t>(pixels, pixels + std::size_t(w) * std::size_t(h) * 4)};
+  stbi_image_free(pixels);
   return out;
 }
 

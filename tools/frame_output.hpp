@@ -67,6 +67,8 @@ image to_image(const std::vector<texel>& texels, format f, int width, int height
 
 // `img` as the bytes of a PNG file (empty if it cannot be encoded).
 std::string png_bytes(const image& img);
+// The PNG file `path` as 8-bit RGBA, or why it cannot be read.
+result<image> read_png(const std::string& path);
 
 // Adds final.png and one PNG per buffer to `out`, and frame.json's fields as its manifest (commit() writes it).
 result<bool> write_frame(const frame& f, output_dir& out, const std::string& technique, const std::string& backend);
