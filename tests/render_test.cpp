@@ -46,7 +46,7 @@ std::optional<frame> draw(backend b, const scene& s, const options& o) {
       WARN("skipped GL: " << ctx.error());
       return std::nullopt;
     }
-    auto f = render::render_gl(s, o, DSTRANS_SHADER_DIR);
+    auto f = render::render_gl(s, o, pass_shaders());
     INFO(f.error());
     REQUIRE(f);
     const auto messages = (*ctx)->debug_messages();
@@ -63,7 +63,7 @@ std::optional<frame> draw(backend b, const scene& s, const options& o) {
   {
     auto dev = vk::device::create((*hd)->ctx());
     REQUIRE(dev);
-    auto f = render::render_vk(**dev, s, o, DSTRANS_SHADER_DIR);
+    auto f = render::render_vk(**dev, s, o, pass_shaders());
     INFO(f.error());
     REQUIRE(f);
     out = *f;
@@ -186,6 +186,196 @@ TEST_CASE("every example scene and technique renders as its recording", "[render
       REQUIRE(f->final_image.height == recording->height);
       CHECK(rmse(f->final_image, *recording) <= 0.5);
     }
+}
+
+// The GL state an engine's frame could rely on after dstrans's frame, read directly (not through
+// state_guard): fixed-function state, enables, pixel storage, generic buffer bindings, and every texture
+// unit, block binding and image unit the context has, up to 64 of each.
+std::vector<std::pair<std::string, GLint64>> gl_state() {
+  std::vector<std::pair<std::string, GLint64>> out;
+  auto ints = [&](const char* name, GLenum e, int n) {
+    GLint64 v[4] = {};
+    glGetInteger64v(e, v);
+    for (int i = 0; i < n; ++i) out.push_back({std::string(name) + "[" + std::to_string(i) + "]", v[i]});
+  };
+  auto indexed = [&](const std::string& name, GLenum e, GLuint i) {
+    GLint64 v = 0;
+    glGetInteger64i_v(e, i, &v);
+    out.push_back({name + "[" + std::to_string(i) + "]", v});
+  };
+  ints("program", GL_CURRENT_PROGRAM, 1);
+  ints("draw framebuffer", GL_DRAW_FRAMEBUFFER_BINDING, 1);
+  ints("read framebuffer", GL_READ_FRAMEBUFFER_BINDING, 1);
+  ints("viewport", GL_VIEWPORT, 4);
+  ints("scissor box", GL_SCISSOR_BOX, 4);
+  ints("clip origin", GL_CLIP_ORIGIN, 1);
+  ints("clip depth", GL_CLIP_DEPTH_MODE, 1);
+  ints("depth func", GL_DEPTH_FUNC, 1);
+  ints("depth writemask", GL_DEPTH_WRITEMASK, 1);
+  ints("colour writemask", GL_COLOR_WRITEMASK, 4);
+  ints("blend src rgb", GL_BLEND_SRC_RGB, 1);
+  ints("blend dst rgb", GL_BLEND_DST_RGB, 1);
+  ints("blend src alpha", GL_BLEND_SRC_ALPHA, 1);
+  ints("blend dst alpha", GL_BLEND_DST_ALPHA, 1);
+  ints("blend equation rgb", GL_BLEND_EQUATION_RGB, 1);
+  ints("blend equation alpha", GL_BLEND_EQUATION_ALPHA, 1);
+  ints("cull face", GL_CULL_FACE_MODE, 1);
+  ints("front face", GL_FRONT_FACE, 1);
+  ints("vertex array", GL_VERTEX_ARRAY_BINDING, 1);
+  ints("array buffer", GL_ARRAY_BUFFER_BINDING, 1);
+  ints("active texture", GL_ACTIVE_TEXTURE, 1);
+  ints("pack alignment", GL_PACK_ALIGNMENT, 1);
+  ints("unpack alignment", GL_UNPACK_ALIGNMENT, 1);
+  ints("pack buffer", GL_PIXEL_PACK_BUFFER_BINDING, 1);
+  ints("unpack buffer", GL_PIXEL_UNPACK_BUFFER_BINDING, 1);
+  ints("uniform buffer", GL_UNIFORM_BUFFER_BINDING, 1);
+  ints("storage buffer", GL_SHADER_STORAGE_BUFFER_BINDING, 1);
+  for (GLenum cap : {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_SCISSOR_TEST, GL_DEPTH_CLAMP, GL_STENCIL_TEST,
+                     GL_FRAMEBUFFER_SRGB})
+    out.push_back({"enabled " + std::to_string(cap), glIsEnabled(cap)});
+  GLint units = 0, uniform_blocks = 0, storage_blocks = 0, image_units = 0, active = 0;
+  glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
+  glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &uniform_blocks);
+  glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &storage_blocks);
+  glGetIntegerv(GL_MAX_IMAGE_UNITS, &image_units);
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+  for (GLuint i = 0; i < GLuint(std::min(units, 64)); ++i) {
+    glActiveTexture(GL_TEXTURE0 + i);
+    for (GLenum target : {GL_TEXTURE_BINDING_2D, GL_TEXTURE_BINDING_3D, GL_TEXTURE_BINDING_2D_ARRAY, GL_SAMPLER_BINDING}) {
+      GLint64 v = 0;
+      glGetInteger64v(target, &v);
+      out.push_back({"unit " + std::to_string(i) + " " + std::to_string(target), v});
+    }
+  }
+  glActiveTexture(GLenum(active));
+  for (GLuint i = 0; i < GLuint(std::min(uniform_blocks, 64)); ++i) {
+    indexed("uniform block", GL_UNIFORM_BUFFER_BINDING, i);
+    indexed("uniform block start", GL_UNIFORM_BUFFER_START, i);
+    indexed("uniform block size", GL_UNIFORM_BUFFER_SIZE, i);
+  }
+  for (GLuint i = 0; i < GLuint(std::min(storage_blocks, 64)); ++i) {
+    indexed("storage block", GL_SHADER_STORAGE_BUFFER_BINDING, i);
+    indexed("storage block start", GL_SHADER_STORAGE_BUFFER_START, i);
+    indexed("storage block size", GL_SHADER_STORAGE_BUFFER_SIZE, i);
+  }
+  for (GLuint i = 0; i < GLuint(std::min(image_units, 64)); ++i)
+    for (GLenum e : {GL_IMAGE_BINDING_NAME, GL_IMAGE_BINDING_LEVEL, GL_IMAGE_BINDING_LAYERED, GL_IMAGE_BINDING_LAYER,
+                     GL_IMAGE_BINDING_ACCESS, GL_IMAGE_BINDING_FORMAT})
+      indexed("image " + std::to_string(e), e, i);
+  return out;
+}
+
+// An engine's state that differs from GL's defaults everywhere gl_state() looks, with its own objects in
+// every texture unit, block binding and image unit.
+struct engine_gl_state {
+  GLuint textures[3] = {}, image = 0, buffer = 0, vertex_array = 0, framebuffer = 0;
+  engine_gl_state() {
+    glCreateTextures(GL_TEXTURE_2D, 1, &textures[0]);
+    glTextureStorage2D(textures[0], 1, GL_RGBA8, 4, 4);
+    glCreateTextures(GL_TEXTURE_3D, 1, &textures[1]);
+    glTextureStorage3D(textures[1], 1, GL_RGBA8, 4, 4, 4);
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &textures[2]);
+    glTextureStorage3D(textures[2], 1, GL_RGBA8, 4, 4, 2);
+    glCreateTextures(GL_TEXTURE_2D, 1, &image);
+    glTextureStorage2D(image, 1, GL_R32UI, 4, 4);
+    glCreateBuffers(1, &buffer);
+    glNamedBufferStorage(buffer, 4096, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glCreateVertexArrays(1, &vertex_array);
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, textures[0], 0);
+    GLint units = 0, uniform_blocks = 0, storage_blocks = 0, image_units = 0, align = 256;
+    glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
+    glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &uniform_blocks);
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &storage_blocks);
+    glGetIntegerv(GL_MAX_IMAGE_UNITS, &image_units);
+    glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &align);
+    for (GLuint i = 0; i < GLuint(std::min(units, 64)); ++i) {
+      glActiveTexture(GL_TEXTURE0 + i);
+      glBindTexture(GL_TEXTURE_2D, textures[0]);
+      if (i % 2) glBindTexture(GL_TEXTURE_3D, textures[1]);
+      if (i % 3) glBindTexture(GL_TEXTURE_2D_ARRAY, textures[2]);
+    }
+    glActiveTexture(GL_TEXTURE5);
+    for (GLuint i = 0; i < GLuint(std::min(uniform_blocks, 64)); ++i)
+      if (i % 2) glBindBufferRange(GL_UNIFORM_BUFFER, i, buffer, align, 256);
+      else glBindBufferBase(GL_UNIFORM_BUFFER, i, buffer);
+    for (GLuint i = 0; i < GLuint(std::min(storage_blocks, 64)); ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffer);
+    for (GLuint i = 0; i < GLuint(std::min(image_units, 64)); ++i)
+      glBindImageTexture(i, image, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindBuffer(GL_UNIFORM_BUFFER, buffer);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glPixelStorei(GL_PACK_ALIGNMENT, 2);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 8);
+    glBindVertexArray(vertex_array);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(3, 4, 50, 60);
+    glScissor(1, 2, 30, 40);
+    glEnable(GL_SCISSOR_TEST);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT_AND_BACK);
+    glFrontFace(GL_CW);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GEQUAL);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_DST_COLOR, GL_ONE_MINUS_SRC_ALPHA, GL_SRC_ALPHA_SATURATE, GL_ZERO);
+    glBlendEquationSeparate(GL_MAX, GL_FUNC_SUBTRACT);
+  }
+  ~engine_gl_state() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteVertexArrays(1, &vertex_array);
+    glDeleteBuffers(1, &buffer);
+    glDeleteTextures(3, textures);
+    glDeleteTextures(1, &image);
+  }
+};
+
+TEST_CASE("GL: a frame leaves the engine's GL state as it found it", "[render][gl]") {
+  auto ctx = gl::headless_context::create();
+  if (!ctx) {
+    WARN("skipped GL: " << ctx.error());
+    return;
+  }
+  struct frame_case {
+    const char* scene;
+    render::technique method;
+    bool everything, particle_reference;
+  };
+  const frame_case cases[] = {{"pane.json", render::technique::interlaced, true, false},
+                              {"hair.json", render::technique::interlaced, false, false},
+                              {"smoke.json", render::technique::interlaced, false, false},
+                              {"smoke.json", render::technique::interlaced, false, true},
+                              {"glass_room.json", render::technique::peeling, false, false},
+                              {"glass_room.json", render::technique::forward_depth, false, false}};
+  engine_gl_state engine;
+  for (const frame_case& c : cases) {
+    INFO(c.scene << ", " << render::technique_name(c.method) << (c.everything ? ", every effect" : "")
+                 << (c.particle_reference ? ", particles by the reference" : ""));
+    scene s = example(c.scene);
+    options o = small(64, 36);
+    o.method = c.method;
+    if (c.everything) o.force = effects::all();
+    if (c.particle_reference) o.particles = options::particle_light::forward;
+    const auto before = gl_state();
+    auto f = render::render_gl(s, o, pass_shaders());
+    INFO(f.error());
+    REQUIRE(f);
+    const auto after = gl_state();
+    REQUIRE(before.size() == after.size());
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < before.size(); ++i)
+      if (before[i] != after[i]) {
+        UNSCOPED_INFO(before[i].first << ": " << before[i].second << " before, " << after[i].second << " after");
+        ++changed;
+      }
+    CHECK(changed == 0);
+  }
+  for (const auto& m : (*ctx)->debug_messages()) UNSCOPED_INFO(m);
 }
 
 TEST_CASE("the leak replay explains every pixel where forward rendering without depth differs", "[render][forward]") {
@@ -638,7 +828,7 @@ TEST_CASE("a pipeline without an effect carries none of its code", "[pipeline][g
     const options o = small(160, 90);
     auto shaders = [&](testing::rung r) {
       const scene s = testing::effect_scene(r);
-      auto p = render::pipeline_passes(DSTRANS_SHADER_DIR, s, render::plan_of(s, o), o);
+      auto p = render::pipeline_passes(pass_shaders(), s, render::plan_of(s, o), o);
       INFO(p.error());
       REQUIRE(p);
       std::string all;
@@ -1126,16 +1316,16 @@ TEST_CASE("blurring a single bright pixel gives the kernel, its weights summing 
   glCreateVertexArrays(1, &vao);
   for (std::size_t k = 0; k < 2; ++k) {
     const post_pass& pass = plan.passes[k];
-    auto src = render::post_pass_sources(DSTRANS_SHADER_DIR, pass, options{});
+    auto src = render::post_pass_sources(pass_shaders(), pass, options{});
     REQUIRE(src);
     auto prog = gl::make_program(src->vertex, src->fragment, pass.name);
     INFO(prog.error());
     REQUIRE(prog);
     glNamedBufferStorage(blocks[1 + k], sizeof pass.params, pass.params, 0);
     gl::bind(images[pass.output]);
-    glBindBufferBase(GL_UNIFORM_BUFFER, render::frame_binding, blocks[0]);
-    glBindBufferBase(GL_UNIFORM_BUFFER, render::post_params_binding, blocks[1 + k]);
-    glBindTextureUnit(render::post_input_binding, images[pass.inputs[0]].textures[0]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), blocks[0]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::post_params), blocks[1 + k]);
+    glBindTextureUnit(binding(slot::post_input), images[pass.inputs[0]].textures[0]);
     glUseProgram(*prog);
     gl::draw_fullscreen(vao);
     glDeleteProgram(*prog);

@@ -28,6 +28,7 @@
 #include "render_vk.hpp"
 #endif
 #include "scene_json.hpp"
+#include "shipped_files.hpp"
 
 namespace dstrans::cli {
 
@@ -439,9 +440,14 @@ int bench(std::vector<std::string> args) {
       std::fprintf(stderr, "dstrans bench: %s\n", g.error().c_str());
       return 1;
     }
+    const auto shipped = shipped_files();
+    if (!shipped) {
+      std::fprintf(stderr, "dstrans bench: %s\n", shipped.error().c_str());
+      return 1;
+    }
     std::map<std::string, scene> scenes;
     for (const char* name : {"glass_room", "glass_room_17", "glass_room_0"}) {
-      auto s = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/" + name + ".json");
+      auto s = load_scene(*shipped + "/scenes/" + name + ".json");
       if (!s) {
         std::fprintf(stderr, "dstrans bench: %s\n", s.error().c_str());
         return 1;
@@ -498,10 +504,10 @@ int bench(std::vector<std::string> args) {
       auto run = [&](render::technique t) -> result<render::frame> {
         const render::options o = options_of(t);
 #ifdef DSTRANS_HAVE_GL
-        if ((*g)->gl) return render::render_gl(s, o, DSTRANS_SHADER_DIR);
+        if ((*g)->gl) return render::render_gl(s, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
-        if ((*g)->vk) return render::render_vk(*(*g)->vk, s, o, DSTRANS_SHADER_DIR);
+        if ((*g)->vk) return render::render_vk(*(*g)->vk, s, o, pass_shaders());
 #endif
         return failure{"no backend"};
       };
@@ -579,8 +585,8 @@ int bench(std::vector<std::string> args) {
     if (tty) std::fputc('\n', stderr);
     // S1: many layers on hair.json, and S2: light volumes on smoke.json, on this backend and on the other
     // where the machine has it.
-    auto hair = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/hair.json");
-    auto smoke = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/smoke.json");
+    auto hair = load_scene(*shipped + "/scenes/hair.json");
+    auto smoke = load_scene(*shipped + "/scenes/smoke.json");
     for (const auto* loaded : {&hair, &smoke})
       if (!*loaded) {
         std::fprintf(stderr, "dstrans bench: %s\n", loaded->error().c_str());
@@ -595,10 +601,10 @@ int bench(std::vector<std::string> args) {
       const gpu& on = b == backend ? **g : **other;
       auto draw = [&](const scene& s, const render::options& o) -> result<render::frame> {
 #ifdef DSTRANS_HAVE_GL
-        if (on.gl) return render::render_gl(s, o, DSTRANS_SHADER_DIR);
+        if (on.gl) return render::render_gl(s, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
-        if (on.vk) return render::render_vk(*on.vk, s, o, DSTRANS_SHADER_DIR);
+        if (on.vk) return render::render_vk(*on.vk, s, o, pass_shaders());
 #endif
         return failure{"no backend"};
       };
@@ -637,7 +643,7 @@ int bench(std::vector<std::string> args) {
     // argument vector, so no path is ever read by a shell.
     const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
     if (written)
-      written = run_program({python, std::string(DSTRANS_SOURCE_DIR) + "/bench/report.py", dir->staging() + "/results.json",
+      written = run_program({python, *shipped + "/report.py", dir->staging() + "/results.json",
                              dir->staging()});
     if (written) written = dir->adopt();
     if (written) written = dir->commit();

@@ -85,7 +85,7 @@ int gen_pipeline(const std::string& file, const std::string& out) {
     return 1;
   }
   const render::options o;
-  const auto passes = render::pipeline_passes(DSTRANS_SHADER_DIR, *s, render::plan_of(*s, o), o);
+  const auto passes = render::pipeline_passes(pass_shaders(), *s, render::plan_of(*s, o), o);
   if (!passes) {
     std::fprintf(stderr, "dstrans gen: %s\n", passes.error().c_str());
     return 1;

@@ -15,19 +15,19 @@ using I = interlace::rows;  // the shadow maps' predicate
 // `src` with the frame interface (and the fragment helpers, for a fragment shader) and then `files`
 // appended, the pass shader last, their #ifdef DST_ sections resolved on `switches`; a failure if a
 // file is missing.
-result<bool> finish(glsl::source& src, const std::string& dir, std::vector<std::string> files,
+result<bool> finish(glsl::source& src, const pass_shaders& shaders, std::vector<std::string> files,
                     const std::vector<std::string>& switches = {}) {
   if (files.back().find(".frag.") != std::string::npos) files.insert(files.begin(), "fragment.glsl");
   files.insert(files.begin(), "frame.glsl");
   for (const std::string& f : files)
-    if (auto ok = src.add_file(dir + "/" + f, switches); !ok) return ok;
+    if (auto ok = shaders.add_to(src, f, switches); !ok) return ok;
   return true;
 }
 
 void add_shadow_layout(glsl::source& src, shadow_mode mode, glsl::side side) {
   glsl::layout_options o;
   o.sides = side;
-  o.first_binding = shadow_binding;
+  o.first_binding = binding(slot::shadow_map);
   if (mode == shadow_mode::transparent) glsl::add_layout<thesis_shadow_map>(src, "shadow", o);
   else glsl::add_layout<opaque_shadow_map>(src, "shadow", o);
 }
@@ -39,12 +39,18 @@ std::vector<std::string> shadow_switches(shadow_mode mode) {
   return {effect_switch(effect::shadows), effect_switch(effect::transparent_shadows)};
 }
 
-result<pass_sources> scene_vertex(const std::string& dir, pass_sources p) {
-  if (auto ok = finish(p.vertex, dir, {"gbuffer.vert.glsl"}); !ok) return failure{ok.error()};
+result<pass_sources> scene_vertex(const pass_shaders& shaders, pass_sources p) {
+  if (auto ok = finish(p.vertex, shaders, {"gbuffer.vert.glsl"}); !ok) return failure{ok.error()};
   return p;
 }
 
 }  // namespace
+
+glsl::source pass_source() {
+  glsl::source src;
+  add_slots(src);
+  return src;
+}
 
 void add_predicate(glsl::source& src, predicate p) {
   switch (p) {
@@ -74,7 +80,7 @@ void add_gbuffer_layout(glsl::source& src, gbuffer_layout l, const std::string& 
   }
 }
 
-result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects on, const options& opt) {
+result<pass_sources> gbuffer_pass(const pass_shaders& shaders, layer which, effects on, const options& opt) {
   pass_sources p;
   std::vector<std::string> switches;
   if (which == layer::second) switches.push_back("DST_PEEL");
@@ -86,18 +92,18 @@ result<pass_sources> gbuffer_pass(const std::string& dir, layer which, effects o
     switches.push_back(effect_switch(effect::transparency));
     add_predicate(p.fragment, opt.interlace);
   }
-  if (auto ok = finish(p.fragment, dir, {"gbuffer.frag.glsl"}, switches); !ok) return failure{ok.error()};
-  return scene_vertex(dir, std::move(p));
+  if (auto ok = finish(p.fragment, shaders, {"gbuffer.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return scene_vertex(shaders, std::move(p));
 }
 
-result<pass_sources> shadow_pass(const std::string& dir, shadow_mode mode, effects on) {
+result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode mode, effects on) {
   pass_sources p;
   add_shadow_layout(p.fragment, mode, glsl::side::write);
   if (mode == shadow_mode::transparent) glsl::add_interlace<I>(p.fragment);
   std::vector<std::string> switches = shadow_switches(mode);
   if (on.has(effect::many_layers)) switches.push_back(effect_switch(effect::many_layers));
-  if (auto ok = finish(p.fragment, dir, {"shadow.frag.glsl"}, switches); !ok) return failure{ok.error()};
-  return scene_vertex(dir, std::move(p));
+  if (auto ok = finish(p.fragment, shaders, {"shadow.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return scene_vertex(shaders, std::move(p));
 }
 
 std::vector<target_desc> light_targets(bool float_targets) {
@@ -113,33 +119,34 @@ target_desc final_target_desc(bool float_targets) {
   return {float_targets ? format::rgba32f : format::rgba8, {"r", "g", "b", "a"}};
 }
 
-result<pass_sources> light_pass(const std::string& dir, shadow_mode mode, bool volume, const options& o) {
+result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode mode, bool volume, const options& o) {
   pass_sources p;
   p.vertex.add_shared(text::dst_fullscreen);
-  if (auto ok = finish(p.vertex, dir, {"light.vert.glsl"}, volume ? std::vector<std::string>{"DST_LIGHT_VOLUME"} : std::vector<std::string>{}); !ok)
+  if (auto ok = finish(p.vertex, shaders, {"light.vert.glsl"}, volume ? std::vector<std::string>{"DST_LIGHT_VOLUME"} : std::vector<std::string>{}); !ok)
     return failure{ok.error()};
   std::vector<std::string> switches = shadow_switches(mode);
   if (o.physical_transmittance) switches.push_back("DST_TRANSMITTANCE");
   glsl::layout_options read;
   read.sides = glsl::side::read;
-  read.first_binding = gbuffer_binding;
+  read.first_binding = binding(slot::gbuffer);
   add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
   glsl::layout_options write;
   write.sides = glsl::side::write;
   add_light_layout(p.fragment, "light", o.float_targets, write);
   if (mode != shadow_mode::off) add_shadow_layout(p.fragment, mode, glsl::side::read);
   if (mode == shadow_mode::transparent) glsl::add_interlace<I>(p.fragment);
-  if (auto ok = finish(p.fragment, dir, {"lighting.glsl", "light.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, shaders, {"lighting.glsl", "light.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return p;
 }
 
-result<pass_sources> compose_pass(const std::string& dir, effects on, const options& o) {
-  pass_sources p{glsl::fullscreen_vertex_shader(), {}};
+result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const options& o) {
+  pass_sources p;
+  p.vertex = glsl::fullscreen_vertex_shader();
   glsl::layout_options read;
   read.sides = glsl::side::read;
-  read.first_binding = gbuffer_binding;
+  read.first_binding = binding(slot::gbuffer);
   add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
-  read.first_binding = light_binding;
+  read.first_binding = binding(slot::light);
   add_light_layout(p.fragment, "light", o.float_targets, read);
   std::vector<std::string> switches;
   for (effect e : {effect::transparency, effect::refraction})
@@ -149,20 +156,20 @@ result<pass_sources> compose_pass(const std::string& dir, effects on, const opti
     if (on.has(effect::transparency)) add_predicate(p.fragment, o.interlace);
     if (on.has(effect::transparency) && o.reconstruct) switches.push_back("DST_RECONSTRUCT");
   } else {
-    read.first_binding = gbuffer2_binding;
+    read.first_binding = binding(slot::gbuffer2);
     add_gbuffer_layout(p.fragment, o.layout, "gbuffer2", read);
-    read.first_binding = light2_binding;
+    read.first_binding = binding(slot::light2);
     add_light_layout(p.fragment, "light2", o.float_targets, read);
     other = "peeled.glsl";
   }
   // Without transparency the compose pass never asks for the other layer.
   std::vector<std::string> files{"compose.frag.glsl"};
   if (on.has(effect::transparency)) files.insert(files.begin(), other);
-  if (auto ok = finish(p.fragment, dir, files, switches); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, shaders, files, switches); !ok) return failure{ok.error()};
   return p;
 }
 
-result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const scene& s, const frame_plan& plan,
+result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shaders, const scene& s, const frame_plan& plan,
                                                 const options& o) {
   std::vector<named_pass> out;
   auto add = [&](const std::string& name, result<pass_sources> p) -> result<bool> {
@@ -170,9 +177,9 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
     out.push_back({name, std::move(*p)});
     return true;
   };
-  if (auto ok = add("gbuffer pass", gbuffer_pass(dir, layer::interlaced, plan.on, o)); !ok) return failure{ok.error()};
+  if (auto ok = add("gbuffer pass", gbuffer_pass(shaders, layer::interlaced, plan.on, o)); !ok) return failure{ok.error()};
   if (plan.shadows != shadow_mode::off)
-    if (auto ok = add("shadow pass", shadow_pass(dir, plan.shadows, plan.on)); !ok) return failure{ok.error()};
+    if (auto ok = add("shadow pass", shadow_pass(shaders, plan.shadows, plan.on)); !ok) return failure{ok.error()};
   for (shadow_mode k : all_lookups)
     for (int vol = 0; vol < 2; ++vol) {
       bool used = false;
@@ -180,17 +187,17 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
         used = used || (plan.lookups[i] == k && (volume_of(s.lights[i], o) != volume::fullscreen) == (vol == 1));
       if (!used) continue;
       const std::string name = std::string("light pass") + lookup_label(k) + (vol ? " volume" : " fullscreen");
-      if (auto ok = add(name, light_pass(dir, k, vol == 1, o)); !ok) return failure{ok.error()};
+      if (auto ok = add(name, light_pass(shaders, k, vol == 1, o)); !ok) return failure{ok.error()};
     }
-  if (auto ok = add("compose pass", compose_pass(dir, plan.on, o)); !ok) return failure{ok.error()};
+  if (auto ok = add("compose pass", compose_pass(shaders, plan.on, o)); !ok) return failure{ok.error()};
   if (plan.on.has(effect::many_layers)) {
-    if (auto ok = add("capture pass", capture_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
-    if (auto ok = add("resolve pass", resolve_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
+    if (auto ok = add("capture pass", capture_pass(shaders, plan.shadows, o)); !ok) return failure{ok.error()};
+    if (auto ok = add("resolve pass", resolve_pass(shaders, plan.shadows, o)); !ok) return failure{ok.error()};
   }
   if (plan.on.has(effect::light_volumes))
-    if (auto ok = add("particle pass", particle_pass(dir, plan.shadows, o)); !ok) return failure{ok.error()};
+    if (auto ok = add("particle pass", particle_pass(shaders, plan.shadows, o)); !ok) return failure{ok.error()};
   for (const post_pass& pass : plan.post.passes)
-    if (auto ok = add("post " + pass.name, post_pass_sources(dir, pass, o)); !ok) return failure{ok.error()};
+    if (auto ok = add("post " + pass.name, post_pass_sources(shaders, pass, o)); !ok) return failure{ok.error()};
   return out;
 }
 
@@ -198,7 +205,7 @@ result<std::vector<named_pass>> pipeline_passes(const std::string& dir, const sc
 void add_layers_inputs(glsl::source& src, shadow_mode shadows, const options& o, std::vector<std::string>& switches) {
   glsl::layout_options read;
   read.sides = glsl::side::read;
-  read.first_binding = gbuffer_binding;
+  read.first_binding = binding(slot::gbuffer);
   add_gbuffer_layout(src, o.layout, "gbuffer", read);
   if (shadows != shadow_mode::off) {
     add_shadow_layout(src, shadows, glsl::side::read);
@@ -224,17 +231,18 @@ std::vector<target_desc> kbuffer_tail_targets() {
   return {{format::rgba16f, {"tail.r", "tail.g", "tail.b", "tail.alpha"}}, {format::r16f, {"optical_depth"}}};
 }
 
-result<pass_sources> capture_pass(const std::string& dir, shadow_mode shadows, const options& o) {
+result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
   pass_sources p;
   std::vector<std::string> switches;
   add_layers_inputs(p.fragment, shadows, o, switches);
   if (o.kbuffer_variant == options::layers::wboit) switches.push_back("DST_LAYERS_WBOIT");
-  if (auto ok = finish(p.fragment, dir, {"kbuffer.glsl", "capture.frag.glsl"}, switches); !ok) return failure{ok.error()};
-  return scene_vertex(dir, std::move(p));
+  if (auto ok = finish(p.fragment, shaders, {"kbuffer.glsl", "capture.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return scene_vertex(shaders, std::move(p));
 }
 
-result<pass_sources> resolve_pass(const std::string& dir, shadow_mode shadows, const options& o) {
-  pass_sources p{glsl::fullscreen_vertex_shader(), {}};
+result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
+  pass_sources p;
+  p.vertex = glsl::fullscreen_vertex_shader();
   std::vector<std::string> switches;
   add_layers_inputs(p.fragment, shadows, o, switches);
   // The forward reference keeps up to 64 fragments in order and shades its tail fully too.
@@ -243,35 +251,38 @@ result<pass_sources> resolve_pass(const std::string& dir, shadow_mode shadows, c
   if (o.kbuffer_variant == options::layers::tailless) switches.push_back("DST_LAYERS_TAILLESS");
   if (o.kbuffer_variant == options::layers::cheap) switches.push_back("DST_LAYERS_CHEAP");
   if (o.kbuffer_variant == options::layers::forward) switches.push_back("DST_LAYERS_FORWARD");
-  if (auto ok = finish(p.fragment, dir, {"kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, shaders, {"kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return p;
 }
 
-result<glsl::source> bake_pass(const std::string& dir, shadow_mode shadows, const options& o) {
-  glsl::source src;
+result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
+  glsl::source src = pass_source();
   std::string hook;
   if (shadows != shadow_mode::off) {
     add_shadow_layout(src, shadows, glsl::side::read);
     if (shadows == shadow_mode::transparent) glsl::add_interlace<I>(src);
-    if (auto ok = finish(src, dir, {"lighting.glsl"}, shadow_switches(shadows)); !ok) return failure{ok.error()};
+    if (auto ok = finish(src, shaders, {"lighting.glsl"}, shadow_switches(shadows)); !ok) return failure{ok.error()};
     // The light's own entry in the frame's lights holds its shadow map's matrix (particle_plan's lights).
     hook = "vec3 dst_volume_shadow(dst_volume_light l, vec3 p, vec3 light) {\n"
            "  return dst_shadowed(light, p, lights[int(l.cos_inner.y + 0.5f)]);\n"
            "}\n";
   }
-  glsl::add_light_volume_bake(src, particle_basis(o), volume_lights_binding, hook);
+  static_assert(binding(slot::volume_texels) == binding(slot::volume_lights) + 1 &&
+                    binding(slot::volume_region) == binding(slot::volume_lights) + 2,
+                "the bake takes its lights, texels and region at three consecutive bindings");
+  glsl::add_light_volume_bake(src, particle_basis(o), binding(slot::volume_lights), hook);
   return src;
 }
 
-result<pass_sources> particle_pass(const std::string& dir, shadow_mode shadows, const options& o) {
+result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
   pass_sources p;
-  if (auto ok = finish(p.vertex, dir, {"particle.vert.glsl"}); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.vertex, shaders, {"particle.vert.glsl"}); !ok) return failure{ok.error()};
   std::vector<std::string> switches;
   if (o.particles == options::particle_light::forward) {
     switches.push_back("DST_PARTICLES_FORWARD");
     if (shadows != shadow_mode::off) {
       for (const std::string& s : shadow_switches(shadows)) switches.push_back(s);
-      if (auto ok = p.fragment.add_file(dir + "/shadow_layers.glsl", switches); !ok) return failure{ok.error()};
+      if (auto ok = shaders.add_to(p.fragment, "shadow_layers.glsl", switches); !ok) return failure{ok.error()};
       add_shadow_layout(p.fragment, shadows, glsl::side::read);
       if (shadows == shadow_mode::transparent) glsl::add_interlace<I>(p.fragment);
     }
@@ -280,26 +291,27 @@ result<pass_sources> particle_pass(const std::string& dir, shadow_mode shadows, 
   }
   glsl::layout_options read;
   read.sides = glsl::side::read;
-  read.first_binding = gbuffer_binding;
+  read.first_binding = binding(slot::gbuffer);
   add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
   std::vector<std::string> files{"particle.frag.glsl"};
   if (o.particles == options::particle_light::forward && shadows != shadow_mode::off) files.insert(files.begin(), "lighting.glsl");
-  if (auto ok = finish(p.fragment, dir, files, switches); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, shaders, files, switches); !ok) return failure{ok.error()};
   return p;
 }
 
-result<pass_sources> post_pass_sources(const std::string& dir, const post_pass& pass, const options& o) {
-  pass_sources p{glsl::fullscreen_vertex_shader(), {}};
+result<pass_sources> post_pass_sources(const pass_shaders& shaders, const post_pass& pass, const options& o) {
+  pass_sources p;
+  p.vertex = glsl::fullscreen_vertex_shader();
   for (const std::string& in : pass.inputs)
     if (in == "gbuffer") {
       glsl::layout_options read;
       read.sides = glsl::side::read;
-      read.first_binding = gbuffer_binding;
+      read.first_binding = binding(slot::gbuffer);
       add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
     }
   for (const std::string& sw : pass.switches)
     if (sw == "DST_AA_INTERLACE") add_predicate(p.fragment, o.interlace);
-  if (auto ok = finish(p.fragment, dir, {"post.glsl", pass.shader}, pass.switches); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, shaders, {"post.glsl", pass.shader}, pass.switches); !ok) return failure{ok.error()};
   return p;
 }
 
@@ -310,7 +322,7 @@ std::vector<target_desc> forward_targets(bool with_depth, bool float_targets) {
   return t;
 }
 
-result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, bool with_depth, shadow_mode mode,
+result<pass_sources> forward_pass(const pass_shaders& shaders, forward_stage stage, bool with_depth, shadow_mode mode,
                                   bool physical_transmittance) {
   pass_sources p;
   std::vector<std::string> switches;
@@ -327,12 +339,12 @@ result<pass_sources> forward_pass(const std::string& dir, forward_stage stage, b
     case forward_stage::light: files = {"lighting.glsl", "forward.glsl", "forward_light.frag.glsl"}; break;
     case forward_stage::blend: files = {"forward_blend.frag.glsl"}; break;
   }
-  if (auto ok = finish(p.fragment, dir, files, switches); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.fragment, shaders, files, switches); !ok) return failure{ok.error()};
   if (stage == forward_stage::blend) {
     p.vertex = glsl::fullscreen_vertex_shader();
     return p;
   }
-  if (auto ok = finish(p.vertex, dir, {"forward.vert.glsl"}, switches); !ok) return failure{ok.error()};
+  if (auto ok = finish(p.vertex, shaders, {"forward.vert.glsl"}, switches); !ok) return failure{ok.error()};
   return p;
 }
 

@@ -146,10 +146,10 @@ int render(std::vector<std::string> args) {
     }
     result<render::frame> f = failure{"no backend"};
 #ifdef DSTRANS_HAVE_GL
-    if ((*g)->gl) f = render::render_gl(*s, o, DSTRANS_SHADER_DIR);
+    if ((*g)->gl) f = render::render_gl(*s, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
-    if ((*g)->vk) f = render::render_vk(*(*g)->vk, *s, o, DSTRANS_SHADER_DIR);
+    if ((*g)->vk) f = render::render_vk(*(*g)->vk, *s, o, pass_shaders());
 #endif
     if (!f) {
       std::fprintf(stderr, "dstrans render: %s\n", f.error().c_str());

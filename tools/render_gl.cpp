@@ -57,7 +57,7 @@ void bind_light_index(GLuint vao, GLuint indices) {
 
 }  // namespace
 
-result<frame> render_gl(const scene& s, const options& o, const std::string& shader_dir, const frame_hooks* hooks) {
+result<frame> render_gl(const scene& s, const options& o, const pass_shaders& shaders, const frame_hooks* hooks) {
   GLint largest = 0, viewport[2] = {0, 0};
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
@@ -77,40 +77,40 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   if (!forward) {
     for (layer which :
          peeling ? std::vector<layer>{layer::first, layer::second} : std::vector<layer>{layer::interlaced}) {
-      auto p = r.program(gbuffer_pass(shader_dir, which, plan.on, o), "gbuffer pass");
+      auto p = r.program(gbuffer_pass(shaders, which, plan.on, o), "gbuffer pass");
       if (!p) return failure{p.error()};
       gbuffer_progs.push_back(*p);
     }
-    auto c = r.program(compose_pass(shader_dir, plan.on, o), "compose pass");
+    auto c = r.program(compose_pass(shaders, plan.on, o), "compose pass");
     if (!c) return failure{c.error()};
     compose_prog = *c;
     for (shadow_mode k : all_lookups)
       for (int vol = 0; vol < 2 && plan.uses(k); ++vol) {
-        auto p = r.program(light_pass(shader_dir, k, vol == 1, o),
+        auto p = r.program(light_pass(shaders, k, vol == 1, o),
                            std::string("light pass") + lookup_label(k) + (vol ? " volume" : " fullscreen"));
         if (!p) return failure{p.error()};
         light_progs[int(k)][vol] = *p;
       }
   } else {
-    auto a = r.program(forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off),
+    auto a = r.program(forward_pass(shaders, forward_stage::ambient, with_depth, shadow_mode::off),
                        "forward ambient pass");
     if (!a) return failure{a.error()};
     ambient_prog = *a;
     for (shadow_mode k : all_lookups) {
       if (!plan.uses(k)) continue;
-      auto p = r.program(forward_pass(shader_dir, forward_stage::light, with_depth, k, o.physical_transmittance),
+      auto p = r.program(forward_pass(shaders, forward_stage::light, with_depth, k, o.physical_transmittance),
                          std::string("forward light pass") + lookup_label(k));
       if (!p) return failure{p.error()};
       forward_light_progs[int(k)] = *p;
     }
     auto b =
-        r.program(forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off), "forward blend pass");
+        r.program(forward_pass(shaders, forward_stage::blend, with_depth, shadow_mode::off), "forward blend pass");
     if (!b) return failure{b.error()};
     compose_prog = *b;
   }
   GLuint shadow_prog = 0;
   if (any_shadows) {
-    auto p = r.program(shadow_pass(shader_dir, mode, plan.on), "shadow pass");
+    auto p = r.program(shadow_pass(shaders, mode, plan.on), "shadow pass");
     if (!p) return failure{p.error()};
     shadow_prog = *p;
   }
@@ -119,10 +119,10 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   const bool many = plan.on.has(effect::many_layers) && !forward;
   GLuint capture_prog = 0, resolve_prog = 0;
   if (many) {
-    auto c = r.program(capture_pass(shader_dir, mode, o), "capture pass");
+    auto c = r.program(capture_pass(shaders, mode, o), "capture pass");
     if (!c) return failure{c.error()};
     capture_prog = *c;
-    auto rs = r.program(resolve_pass(shader_dir, mode, o), "resolve pass");
+    auto rs = r.program(resolve_pass(shaders, mode, o), "resolve pass");
     if (!rs) return failure{rs.error()};
     resolve_prog = *rs;
   }
@@ -139,14 +139,14 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   if (particles) {
     for (const bool shadowed : {false, true}) {
       if (!baking || (shadowed ? shadowed_lights.empty() : unshadowed_lights.empty())) continue;
-      auto src = bake_pass(shader_dir, shadowed ? mode : shadow_mode::off, o);
+      auto src = bake_pass(shaders, shadowed ? mode : shadow_mode::off, o);
       if (!src) return failure{src.error()};
       auto prog = gl::make_compute_program(*src, shadowed ? "bake pass shadowed" : "bake pass");
       if (!prog) return failure{prog.error()};
       r.programs.push_back(*prog);
       (shadowed ? bake_shadowed_prog : bake_prog) = *prog;
     }
-    auto p = r.program(particle_pass(shader_dir, smoke.shadows, o), "particle pass");
+    auto p = r.program(particle_pass(shaders, smoke.shadows, o), "particle pass");
     if (!p) return failure{p.error()};
     particle_prog = *p;
   }
@@ -186,9 +186,9 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   camera.params.z = float(hair_shadow_light(plan));
   const GLuint frame_ubo = r.buffer(std::vector<frame_block>{camera}, "camera frame");
   const GLuint shadow_ubo = r.buffer(std::vector<frame_block>{camera}, "light frame");
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, materials_binding, r.buffer(material_blocks(s), "materials"));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::materials), r.buffer(material_blocks(s), "materials"));
   const std::vector<light_block> light_data = light_blocks(s);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, lights_binding, r.buffer(light_data, "lights"));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::lights), r.buffer(light_data, "lights"));
 
   std::vector<gl::targets> gbuffers, light_buffers;
   for (int k = 0; k < layers; ++k) {
@@ -290,7 +290,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         gl::label(GL_TEXTURE, shadow_layers[t], t == 0 ? "shadow layers depth" : "shadow layers colour");
       }
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, particle_regions_binding,
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::particle_regions),
                      r.buffer(particle_regions(s, atlas), "particle regions"));
     std::size_t count = 0;
     for (const particle_system& ps : s.particles) count += std::size_t(std::max(ps.count, 0));
@@ -315,7 +315,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   std::map<std::string, gl::targets> post_targets;
   std::map<std::string, GLuint> registry{{"frame", final_target->textures[0]}};
   for (const post_pass& pass : post.passes) {
-    auto p = r.program(post_pass_sources(shader_dir, pass, o), "post " + pass.name);
+    auto p = r.program(post_pass_sources(shaders, pass, o), "post " + pass.name);
     if (!p) return failure{p.error()};
     post_progs.push_back(*p);
     post_blocks.push_back(r.buffer(std::vector<glm::vec4>{glm::vec4(pass.params[0], pass.params[1], pass.params[2], pass.params[3])},
@@ -332,27 +332,27 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
 
   // One bake dispatch a region, with the lights in `lights`, reading the camera's frame and the shadow map.
   auto bake = [&](GLuint prog, GLuint lights) {
-    glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+    glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), frame_ubo);
     for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
-      glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+      glBindTextureUnit(GLuint(binding(slot::shadow_map)) + GLuint(t), shadow_map.textures[t]);
     glUseProgram(prog);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, volume_lights_binding, lights);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, volume_texels_binding, volume_texels);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::volume_lights), lights);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::volume_texels), volume_texels);
     for (std::size_t k = 0; k < atlas.regions.size(); ++k) {
       const glm::ivec4 d = atlas.regions[k].dims;
-      glBindBufferBase(GL_UNIFORM_BUFFER, volume_region_binding, region_blocks[k]);
+      glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::volume_region), region_blocks[k]);
       glDispatchCompute(GLuint(d.x + 3) / 4, GLuint(d.y + 3) / 4, GLuint(d.z + 3) / 4);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   };
 
   auto bind_layers = [&] {
-    glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-    glBindImageTexture(kbuffer_heads_binding, heads, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kbuffer_nodes_binding, nodes);
-    bind_gbuffer(gbuffer_binding, gbuffers[0]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), frame_ubo);
+    glBindImageTexture(binding(slot::kbuffer_heads), heads, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::kbuffer_nodes), nodes);
+    bind_gbuffer(binding(slot::gbuffer), gbuffers[0]);
     for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
-      glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+      glBindTextureUnit(GLuint(binding(slot::shadow_map)) + GLuint(t), shadow_map.textures[t]);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glEnable(GL_BLEND);
@@ -398,8 +398,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
         glDisable(GL_CULL_FACE);
-        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-        if (k) glBindTextureUnit(GLuint(peel_depth_binding), depth_of(gbuffers[0]));
+        glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), frame_ubo);
+        if (k) glBindTextureUnit(GLuint(binding(slot::peel_depth)), depth_of(gbuffers[0]));
         glUseProgram(gbuffer_progs[std::size_t(k)]);
         glBindVertexArray(scene_vao);
         glDrawElements(GL_TRIANGLES, GLsizei(m.hair_first), GL_UNSIGNED_INT, nullptr);
@@ -419,7 +419,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
         glDisable(GL_CULL_FACE);
-        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+        glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), frame_ubo);
         glUseProgram(ambient_prog);
         glBindVertexArray(scene_vao);
         glDrawElements(GL_TRIANGLES, GLsizei(m.hair_first), GL_UNSIGNED_INT, nullptr);
@@ -454,7 +454,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
           glDisable(GL_CULL_FACE);
           const frame_block lf = light_frame(s, light_data[i], o);
           glNamedBufferSubData(shadow_ubo, 0, sizeof lf, &lf);
-          glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, shadow_ubo);
+          glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), shadow_ubo);
           glUseProgram(shadow_prog);
           glBindVertexArray(scene_vao);
           glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
@@ -479,7 +479,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
           gl::debug_group g("forward light pass, light " + std::to_string(i));
           glBindFramebuffer(GL_FRAMEBUFFER, lit_colour_only);
           glViewport(0, 0, o.width, o.height);
-          glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+          glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), frame_ubo);
           glEnable(GL_DEPTH_TEST);
           glDepthFunc(GL_LEQUAL);
           glDepthMask(GL_FALSE);
@@ -488,7 +488,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
           glBlendFunc(GL_ONE, GL_ONE);
           if (shadowed)
             for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
-              glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+              glBindTextureUnit(GLuint(binding(slot::shadow_map)) + GLuint(t), shadow_map.textures[t]);
           glUseProgram(forward_light_progs[int(lookup)]);
           glBindVertexArray(scene_vao);
           glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.hair_first), GL_UNSIGNED_INT, nullptr, 1,
@@ -498,15 +498,15 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         timed("light", [&] {
           gl::debug_group g("light pass, light " + std::to_string(i) + (k ? ", second layer" : ""));
           gl::bind(light_buffers[std::size_t(k)]);
-          glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+          glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), frame_ubo);
           glDisable(GL_DEPTH_TEST);
           glDepthMask(GL_FALSE);
           glEnable(GL_BLEND);
           glBlendFunc(GL_ONE, GL_ONE);
-          bind_gbuffer(gbuffer_binding, gbuffers[std::size_t(k)]);
+          bind_gbuffer(binding(slot::gbuffer), gbuffers[std::size_t(k)]);
           if (shadowed)
             for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
-              glBindTextureUnit(GLuint(shadow_binding) + GLuint(t), shadow_map.textures[t]);
+              glBindTextureUnit(GLuint(binding(slot::shadow_map)) + GLuint(t), shadow_map.textures[t]);
           const volume v = volume_of(l, o);
           glUseProgram(light_progs[int(lookup)][v == volume::fullscreen ? 0 : 1]);
           if (v == volume::fullscreen) {
@@ -543,15 +543,15 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
       glDisable(GL_BLEND);
       glDisable(GL_CULL_FACE);
       glDisable(GL_DEPTH_TEST);
-      glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
+      glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), frame_ubo);
       if (forward)
-        for (std::size_t t = 0; t < lit.textures.size(); ++t) glBindTextureUnit(GLuint(t), lit.textures[t]);
+        for (std::size_t t = 0; t < lit.textures.size(); ++t) glBindTextureUnit(GLuint(binding(slot::forward_lit)) + GLuint(t), lit.textures[t]);
       else
-        bind_gbuffer(gbuffer_binding, gbuffers[0]);
-      if (!forward) glBindTextureUnit(GLuint(light_binding), light_buffers[0].textures[0]);
+        bind_gbuffer(binding(slot::gbuffer), gbuffers[0]);
+      if (!forward) glBindTextureUnit(GLuint(binding(slot::light)), light_buffers[0].textures[0]);
       if (peeling) {
-        bind_gbuffer(gbuffer2_binding, gbuffers[1]);
-        glBindTextureUnit(GLuint(light2_binding), light_buffers[1].textures[0]);
+        bind_gbuffer(binding(slot::gbuffer2), gbuffers[1]);
+        glBindTextureUnit(GLuint(binding(slot::light2)), light_buffers[1].textures[0]);
       }
       glUseProgram(compose_prog);
       gl::draw_fullscreen(fullscreen_vao);
@@ -579,7 +579,7 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         bind_layers();
         // The resolve writes the hair premultiplied, and in alpha what the frame behind keeps.
         glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
-        for (GLuint t = 0; t < 2; ++t) glBindTextureUnit(GLuint(kbuffer_tail_binding) + t, tail.textures[t]);
+        for (GLuint t = 0; t < 2; ++t) glBindTextureUnit(GLuint(binding(slot::kbuffer_tail)) + t, tail.textures[t]);
         glUseProgram(resolve_prog);
         gl::draw_fullscreen(fullscreen_vao);
       });
@@ -589,11 +589,11 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         gl::debug_group g("particle pass");
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         gl::bind(*final_target);
-        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-        bind_gbuffer(gbuffer_binding, gbuffers[0]);
-        if (baking) glBindTextureUnit(GLuint(volume_atlas_binding), atlas_texture);
+        glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), frame_ubo);
+        bind_gbuffer(binding(slot::gbuffer), gbuffers[0]);
+        if (baking) glBindTextureUnit(GLuint(binding(slot::volume_atlas)), atlas_texture);
         for (GLuint t = 0; t < 2; ++t)
-          if (shadow_layers[t]) glBindTextureUnit(GLuint(shadow_layers_binding) + t, shadow_layers[t]);
+          if (shadow_layers[t]) glBindTextureUnit(GLuint(binding(slot::shadow_layers)) + t, shadow_layers[t]);
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
         glEnable(GL_BLEND);
@@ -611,10 +611,10 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
-        glBindBufferBase(GL_UNIFORM_BUFFER, frame_binding, frame_ubo);
-        glBindBufferBase(GL_UNIFORM_BUFFER, post_params_binding, post_blocks[k]);
-        bind_gbuffer(gbuffer_binding, gbuffers[0]);
-        GLuint unit = post_input_binding;
+        glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), frame_ubo);
+        glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::post_params), post_blocks[k]);
+        bind_gbuffer(binding(slot::gbuffer), gbuffers[0]);
+        GLuint unit = binding(slot::post_input);
         for (const std::string& in : pass.inputs)
           if (in != "gbuffer") glBindTextureUnit(unit++, registry.at(in));
         glUseProgram(post_progs[k]);
@@ -641,6 +641,8 @@ result<frame> render_gl(const scene& s, const options& o, const std::string& sha
   out.final_texels = gl::read_texels(shown, 0);
   if (many) {
     out.kbuffer_heads.resize(std::size_t(o.width) * std::size_t(o.height));
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);  // into client memory (the guard restores the engine's)
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glGetTextureImage(heads, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(out.kbuffer_heads.size() * 4), out.kbuffer_heads.data());
     std::vector<glm::uvec4> pool(std::size_t(capacity) + 1u);
     glGetNamedBufferSubData(nodes, 0, GLsizeiptr(pool.size() * sizeof(glm::uvec4)), pool.data());

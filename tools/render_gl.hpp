@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include <dstrans/pass_shaders.hpp>
 #include <dstrans/result.hpp>
 #include <dstrans/scene.hpp>
 
@@ -22,9 +23,8 @@ struct frame_hooks {
   std::function<void(unsigned framebuffer, const std::map<std::string, double>& pass_ms)> after;
 };
 
-// One frame of `s` (o.frames frames, or as many as hooks->before allows); `shader_dir` holds the pass
-// shaders (shaders/glsl).
-result<frame> render_gl(const scene& s, const options& o, const std::string& shader_dir,
+// One frame of `s` (o.frames frames, or as many as hooks->before allows) with the pass shaders `shaders`.
+result<frame> render_gl(const scene& s, const options& o, const pass_shaders& shaders,
                         const frame_hooks* hooks = nullptr);
 
 }  // namespace dstrans::render

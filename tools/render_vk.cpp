@@ -151,7 +151,7 @@ VkVertexInputAttributeDescription attribute(std::uint32_t location, std::uint32_
 
 }  // namespace
 
-result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const std::string& shader_dir) {
+result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders) {
   const vk::context& ctx = dev.ctx();
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(ctx.physical_device, &props);
@@ -221,7 +221,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   for (layer which : forward   ? std::vector<layer>{}
                      : peeling ? std::vector<layer>{layer::first, layer::second}
                                : std::vector<layer>{layer::interlaced}) {
-    auto sh = compile(dev, gbuffer_pass(shader_dir, which, plan.on, o), "gbuffer pass");
+    auto sh = compile(dev, gbuffer_pass(shaders, which, plan.on, o), "gbuffer pass");
     if (!sh) return failure{sh.error()};
     auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, gbuffers[0].formats, "gbuffer pass", scene_state);
     if (!p) return failure{p.error()};
@@ -233,7 +233,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   result<compiled> shadow_shaders = failure{"unused"};
   vk::pipeline shadow_pipe;
   if (any_shadows) {
-    shadow_shaders = compile(dev, shadow_pass(shader_dir, mode, plan.on), "shadow pass");
+    shadow_shaders = compile(dev, shadow_pass(shaders, mode, plan.on), "shadow pass");
     if (!shadow_shaders) return failure{shadow_shaders.error()};
     auto p = dev.make_graphics_pipeline(*shadow_shaders->vertex, *shadow_shaders->fragment, shadow_map.formats,
                                         "shadow pass", scene_state);
@@ -249,7 +249,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   for (shadow_mode k : all_lookups)
     for (int vol = 0; vol < 2 && !forward && plan.uses(k); ++vol) {
       const std::string name = std::string("light pass") + lookup_label(k) + (vol ? " volume" : " fullscreen");
-      auto sh = compile(dev, light_pass(shader_dir, k, vol == 1, o), name);
+      auto sh = compile(dev, light_pass(shaders, k, vol == 1, o), name);
       if (!sh) return failure{sh.error()};
       light_shaders[int(k)][vol] = *sh;
       vk::pipeline_state st;
@@ -271,7 +271,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   compiled ambient_shaders{}, forward_light_shaders[3]{};
   vk::pipeline ambient_pipe, forward_light_pipes[3]{};
   if (forward) {
-    auto a = compile(dev, forward_pass(shader_dir, forward_stage::ambient, with_depth, shadow_mode::off),
+    auto a = compile(dev, forward_pass(shaders, forward_stage::ambient, with_depth, shadow_mode::off),
                      "forward ambient pass");
     if (!a) return failure{a.error()};
     ambient_shaders = *a;
@@ -282,7 +282,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     for (shadow_mode k : all_lookups) {
       if (!plan.uses(k)) continue;
       const std::string name = std::string("forward light pass") + lookup_label(k);
-      auto sh = compile(dev, forward_pass(shader_dir, forward_stage::light, with_depth, k, o.physical_transmittance), name);
+      auto sh = compile(dev, forward_pass(shaders, forward_stage::light, with_depth, k, o.physical_transmittance), name);
       if (!sh) return failure{sh.error()};
       forward_light_shaders[int(k)] = *sh;
       vk::pipeline_state st = forward_state;
@@ -296,9 +296,9 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     }
   }
   auto compose_shaders =
-      forward ? compile(dev, forward_pass(shader_dir, forward_stage::blend, with_depth, shadow_mode::off),
+      forward ? compile(dev, forward_pass(shaders, forward_stage::blend, with_depth, shadow_mode::off),
                         "forward blend pass")
-              : compile(dev, compose_pass(shader_dir, plan.on, o), "compose pass");
+              : compile(dev, compose_pass(shaders, plan.on, o), "compose pass");
   if (!compose_shaders) return failure{compose_shaders.error()};
   auto compose_pipe = dev.make_graphics_pipeline(*compose_shaders->vertex, *compose_shaders->fragment,
                                                  final_target->formats, "compose pass");
@@ -326,7 +326,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!nb) return failure{nb.error()};
     nodes = *nb;
     r.buffers.push_back(nodes);
-    capture_shaders = compile(dev, capture_pass(shader_dir, mode, o), "capture pass");
+    capture_shaders = compile(dev, capture_pass(shaders, mode, o), "capture pass");
     if (!capture_shaders) return failure{capture_shaders.error()};
     vk::pipeline_state st = scene_state;
     st.additive = true;
@@ -334,7 +334,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     if (!cp) return failure{cp.error()};
     capture_pipe = *cp;
     r.pipelines.push_back(capture_pipe);
-    resolve_shaders = compile(dev, resolve_pass(shader_dir, mode, o), "resolve pass");
+    resolve_shaders = compile(dev, resolve_pass(shaders, mode, o), "resolve pass");
     if (!resolve_shaders) return failure{resolve_shaders.error()};
     vk::pipeline_state rs;
     rs.transmit = true;
@@ -368,7 +368,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     for (const int shadowed : {0, 1}) {
       if (!baking || (shadowed ? shadowed_lights.empty() : unshadowed_lights.empty())) continue;
       const std::string name = shadowed ? "bake pass shadowed" : "bake pass";
-      auto src = bake_pass(shader_dir, shadowed ? mode : shadow_mode::off, o);
+      auto src = bake_pass(shaders, shadowed ? mode : shadow_mode::off, o);
       if (!src) return failure{src.error()};
       auto sh = dev.get_shader(*src, spirv::stage::compute, name);
       if (!sh) return failure{sh.error()};
@@ -378,7 +378,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       bake_shaders[shadowed] = *sh;
       bake_pipes[shadowed] = *p;
     }
-    particle_shaders = compile(dev, particle_pass(shader_dir, smoke.shadows, o), "particle pass");
+    particle_shaders = compile(dev, particle_pass(shaders, smoke.shadows, o), "particle pass");
     if (!particle_shaders) return failure{particle_shaders.error()};
     vk::pipeline_state st;
     st.transmit = true;  // colour premultiplied, and in alpha what the frame behind keeps
@@ -417,7 +417,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   std::map<std::string, vk::targets> post_targets;
   std::map<std::string, VkImageView> registry{{"frame", final_target->colors[0].view}};
   for (const post_pass& pass : post.passes) {
-    auto sh = compile(dev, post_pass_sources(shader_dir, pass, o), "post " + pass.name);
+    auto sh = compile(dev, post_pass_sources(shaders, pass, o), "post " + pass.name);
     if (!sh) return failure{sh.error()};
     auto p = dev.make_graphics_pipeline(*sh->vertex, *sh->fragment, final_target->formats, "post " + pass.name);
     if (!p) return failure{p.error()};
@@ -518,10 +518,10 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   // What every pass binds (the frame's blocks and the shadow map); what each layer's passes bind on top
   // (its G-buffer at the G-buffer bindings); the compose pass sees both layers, the blend the lit target.
   bindings base;
-  base.buffers = {{frame_binding, frame_ubo}, {materials_binding, material_ssbo}, {lights_binding, light_ssbo}};
+  base.buffers = {{binding(slot::frame), frame_ubo}, {binding(slot::materials), material_ssbo}, {binding(slot::lights), light_ssbo}};
   if (any_shadows)
     for (std::size_t t = 0; t < shadow_map.colors.size(); ++t)
-      base.images[shadow_binding + int(t)] = shadow_map.colors[t].view;
+      base.images[binding(slot::shadow_map) + int(t)] = shadow_map.colors[t].view;
   // A G-buffer's images at `first` and up (the compact layout's depth attachment at its depth slot).
   auto bind_gbuffer = [&](bindings& b, int first, const vk::targets& g) {
     for (std::size_t t = 0; t < g.colors.size(); ++t) b.images[first + int(t)] = g.colors[t].view;
@@ -530,22 +530,22 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   std::vector<bindings> per_layer(static_cast<std::size_t>(layers), base);
   for (int k = 0; k < layers; ++k) {
     bindings& b = per_layer[std::size_t(k)];
-    bind_gbuffer(b, gbuffer_binding, gbuffers[std::size_t(k)]);
-    b.images[light_binding] = light_buffers[std::size_t(k)].colors[0].view;
-    b.images[peel_depth_binding] = o.layout == gbuffer_layout::compact ? gbuffers[0].depth.view : gbuffers[0].colors[3].view;
+    bind_gbuffer(b, binding(slot::gbuffer), gbuffers[std::size_t(k)]);
+    b.images[binding(slot::light)] = light_buffers[std::size_t(k)].colors[0].view;
+    b.images[binding(slot::peel_depth)] = o.layout == gbuffer_layout::compact ? gbuffers[0].depth.view : gbuffers[0].colors[3].view;
   }
   bindings common = forward ? base : per_layer[0];
   bindings layers_set = common;  // the k-buffer passes: the first G-buffer, the lists, the tail
   if (many) {
-    layers_set.images[kbuffer_heads_binding] = heads.view;
-    layers_set.buffers[kbuffer_nodes_binding] = nodes.handle;
-    for (int t = 0; t < 2; ++t) layers_set.images[kbuffer_tail_binding + t] = tail.colors[std::size_t(t)].view;
+    layers_set.images[binding(slot::kbuffer_heads)] = heads.view;
+    layers_set.buffers[binding(slot::kbuffer_nodes)] = nodes.handle;
+    for (int t = 0; t < 2; ++t) layers_set.images[binding(slot::kbuffer_tail) + t] = tail.colors[std::size_t(t)].view;
   }
   if (forward)
-    for (std::size_t t = 0; t < lit.colors.size(); ++t) common.images[int(t)] = lit.colors[t].view;
+    for (std::size_t t = 0; t < lit.colors.size(); ++t) common.images[binding(slot::forward_lit) + int(t)] = lit.colors[t].view;
   if (peeling) {
-    bind_gbuffer(common, gbuffer2_binding, gbuffers[1]);
-    common.images[light2_binding] = light_buffers[1].colors[0].view;
+    bind_gbuffer(common, binding(slot::gbuffer2), gbuffers[1]);
+    common.images[binding(slot::light2)] = light_buffers[1].colors[0].view;
   }
 
   // One bake dispatch a region with the lights in `lights`, reading the camera's frame and the shadow map.
@@ -553,9 +553,9 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     std::vector<VkDescriptorSet> region_sets;
     for (std::size_t k = 0; k < atlas.regions.size(); ++k) {
       bindings b = base;
-      b.buffers[volume_lights_binding] = lights;
-      b.buffers[volume_texels_binding] = volume_texels;
-      b.buffers[volume_region_binding] = region_blocks[k];
+      b.buffers[binding(slot::volume_lights)] = lights;
+      b.buffers[binding(slot::volume_texels)] = volume_texels;
+      b.buffers[binding(slot::volume_region)] = region_blocks[k];
       auto set = make_set(r, bake_pipes[shadowed], {bake_shaders[shadowed]}, b);
       if (!set) return failure{set.error()};
       region_sets.push_back(*set);
@@ -572,13 +572,13 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   };
   bindings particle_set = common;
   if (particles) {
-    particle_set.buffers[particle_regions_binding] = regions_buffer;
+    particle_set.buffers[binding(slot::particle_regions)] = regions_buffer;
     if (baking) {
-      particle_set.images[volume_atlas_binding] = atlas_image.view;
-      particle_set.samplers[volume_atlas_binding] = r.linear_sampler;
+      particle_set.images[binding(slot::volume_atlas)] = atlas_image.view;
+      particle_set.samplers[binding(slot::volume_atlas)] = r.linear_sampler;
     }
     for (int t = 0; t < 2; ++t)
-      if (shadow_layers[t].view) particle_set.images[shadow_layers_binding + t] = shadow_layers[t].view;
+      if (shadow_layers[t].view) particle_set.images[binding(slot::shadow_layers) + t] = shadow_layers[t].view;
   }
 
   frame out;
@@ -661,7 +661,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       const bool shadowed = lookup != shadow_mode::off;
       if (shadowed) {
         bindings seen_from_light = common;
-        seen_from_light.buffers[frame_binding] = light_ubos[i];
+        seen_from_light.buffers[binding(slot::frame)] = light_ubos[i];
         auto set = make_set(r, shadow_pipe, {shadow_shaders->vertex, shadow_shaders->fragment}, seen_from_light);
         if (!set) return failure{set.error()};
         timed("shadow", [&](VkCommandBuffer cmd) {
@@ -813,10 +813,10 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     for (std::size_t k = 0; k < post.passes.size(); ++k) {
       const post_pass& pass = post.passes[k];
       bindings b = common;
-      b.buffers[post_params_binding] = *made[post_first + k];
-      int binding = post_input_binding;
+      b.buffers[binding(slot::post_params)] = *made[post_first + k];
+      int input = binding(slot::post_input);
       for (const std::string& in : pass.inputs)
-        if (in != "gbuffer") b.images[binding++] = registry.at(in);
+        if (in != "gbuffer") b.images[input++] = registry.at(in);
       auto set = make_set(r, post_pipes[k], {post_shaders[k].vertex, post_shaders[k].fragment}, b);
       if (!set) return failure{set.error()};
       timed("post " + pass.effect, [&](VkCommandBuffer cmd) {

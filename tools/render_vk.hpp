@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include <dstrans/pass_shaders.hpp>
 #include <dstrans/result.hpp>
 #include <dstrans/scene.hpp>
 #include <dstrans_vk.hpp>
@@ -12,7 +13,7 @@
 
 namespace dstrans::render {
 
-// One frame of `s` on `dev`; `shader_dir` holds the pass shaders (shaders/glsl).
-result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const std::string& shader_dir);
+// One frame of `s` on `dev` with the pass shaders `shaders`.
+result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);
 
 }  // namespace dstrans::render

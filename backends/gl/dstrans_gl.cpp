@@ -137,8 +137,15 @@ std::vector<texel> read_texels(const targets& t, int index) {
   else if (fi.bits[0] == 16) type = GL_HALF_FLOAT;
   const std::size_t bpp = std::size_t(fi.bytes_per_pixel), n = std::size_t(t.width) * std::size_t(t.height);
   std::vector<std::uint8_t> bytes(n * bpp);
+  // Into client memory, whatever pack buffer and alignment the engine has set.
+  GLint pack_buffer = 0, pack_alignment = 4;
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+  glGetIntegerv(GL_PACK_ALIGNMENT, &pack_alignment);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glGetTextureImage(t.textures[std::size_t(index)], 0, gl_format, type, GLsizei(bytes.size()), bytes.data());
+  glPixelStorei(GL_PACK_ALIGNMENT, pack_alignment);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(pack_buffer));
   std::vector<texel> out(n);
   for (std::size_t i = 0; i < n; ++i) std::memcpy(out[i].data(), &bytes[i * bpp], bpp);
   return out;
@@ -217,7 +224,7 @@ debug_group::debug_group(const std::string& name) {
 }
 debug_group::~debug_group() { glPopDebugGroup(); }
 
-state_guard::state_guard() {
+state_guard::state_guard(const std::vector<GLuint>& storage_blocks) {
   glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fb_);
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fb_);
@@ -235,12 +242,53 @@ state_guard::state_guard() {
   glGetIntegerv(GL_FRONT_FACE, &front_face_);
   glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertex_array_);
   glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
-  for (GLuint i = 0; i < 16; ++i) {
-    glActiveTexture(GL_TEXTURE0 + i);
-    glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[i]);
-  }
+  glGetIntegerv(GL_PACK_ALIGNMENT, &pack_alignment_);
+  glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpack_alignment_);
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer_);
+  glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack_buffer_);
+  glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniform_buffer_);
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_buffer_);
+  auto save_buffer = [&](GLenum target, GLenum binding, GLenum start, GLenum size, GLuint index) {
+    buffer_range r{target, index, 0, 0, 0};
+    glGetIntegeri_v(binding, index, &r.name);
+    glGetInteger64i_v(start, index, &r.start);
+    glGetInteger64i_v(size, index, &r.size);
+    buffers_.push_back(r);
+  };
+  for (const slot_desc& d : slot_table)
+    for (GLuint i = GLuint(d.binding); i < GLuint(d.binding + d.count); ++i) switch (d.kind) {
+        case slot_kind::texture: {
+          texture_unit u{i, 0, 0, 0};
+          glActiveTexture(GL_TEXTURE0 + i);
+          glGetIntegerv(GL_TEXTURE_BINDING_2D, &u.texture_2d);
+          glGetIntegerv(GL_TEXTURE_BINDING_3D, &u.texture_3d);
+          glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &u.texture_2d_array);
+          textures_.push_back(u);
+          break;
+        }
+        case slot_kind::image: {
+          image_unit u{i, 0, 0, 0, 0, 0, 0};
+          glGetIntegeri_v(GL_IMAGE_BINDING_NAME, i, &u.name);
+          glGetIntegeri_v(GL_IMAGE_BINDING_LEVEL, i, &u.level);
+          glGetIntegeri_v(GL_IMAGE_BINDING_LAYERED, i, &u.layered);
+          glGetIntegeri_v(GL_IMAGE_BINDING_LAYER, i, &u.layer);
+          glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, i, &u.access);
+          glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, i, &u.format);
+          images_.push_back(u);
+          break;
+        }
+        case slot_kind::uniform_block:
+          save_buffer(GL_UNIFORM_BUFFER, GL_UNIFORM_BUFFER_BINDING, GL_UNIFORM_BUFFER_START, GL_UNIFORM_BUFFER_SIZE, i);
+          break;
+        case slot_kind::storage_block:
+          save_buffer(GL_SHADER_STORAGE_BUFFER, GL_SHADER_STORAGE_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_START,
+                      GL_SHADER_STORAGE_BUFFER_SIZE, i);
+          break;
+      }
+  for (GLuint i : storage_blocks)
+    save_buffer(GL_SHADER_STORAGE_BUFFER, GL_SHADER_STORAGE_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_START,
+                GL_SHADER_STORAGE_BUFFER_SIZE, i);
   glActiveTexture(GLenum(active_texture_));
-  for (GLuint i = 0; i < 8; ++i) glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &storage_[i]);
   depth_test_ = glIsEnabled(GL_DEPTH_TEST);
   glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
   blend_ = glIsEnabled(GL_BLEND);
@@ -262,12 +310,26 @@ state_guard::~state_guard() {
   glCullFace(GLenum(cull_face_));
   glFrontFace(GLenum(front_face_));
   glBindVertexArray(GLuint(vertex_array_));
-  for (GLuint i = 0; i < 16; ++i) {
-    glActiveTexture(GL_TEXTURE0 + i);
-    glBindTexture(GL_TEXTURE_2D, GLuint(textures_[i]));
+  glPixelStorei(GL_PACK_ALIGNMENT, pack_alignment_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, unpack_alignment_);
+  for (const texture_unit& u : textures_) {
+    glActiveTexture(GL_TEXTURE0 + u.unit);
+    glBindTexture(GL_TEXTURE_2D, GLuint(u.texture_2d));
+    glBindTexture(GL_TEXTURE_3D, GLuint(u.texture_3d));
+    glBindTexture(GL_TEXTURE_2D_ARRAY, GLuint(u.texture_2d_array));
   }
   glActiveTexture(GLenum(active_texture_));
-  for (GLuint i = 0; i < 8; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, GLuint(storage_[i]));
+  for (const image_unit& u : images_)
+    glBindImageTexture(u.unit, GLuint(u.name), u.level, GLboolean(u.layered), u.layer, GLenum(u.access), GLenum(u.format));
+  // In reverse, so that a binding saved twice (a slot and a caller's storage block) ends as it was.
+  for (auto r = buffers_.rbegin(); r != buffers_.rend(); ++r) {
+    if (r->name != 0 && r->size > 0) glBindBufferRange(r->target, r->index, GLuint(r->name), r->start, r->size);
+    else glBindBufferBase(r->target, r->index, GLuint(r->name));
+  }
+  glBindBuffer(GL_UNIFORM_BUFFER, GLuint(uniform_buffer_));
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, GLuint(storage_buffer_));
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(pack_buffer_));
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(unpack_buffer_));
   enable(GL_DEPTH_TEST, depth_test_);
   glDepthMask(depth_mask_);
   enable(GL_BLEND, blend_);
@@ -308,7 +370,7 @@ result<words> formula_runner::run_dispatch(GLuint program, const formula& f, con
   glNamedBufferStorage(buffers[0], GLsizeiptr(in.size() * 4), in.data(), 0);
   glNamedBufferStorage(buffers[1], GLsizeiptr((out_words ? out_words : 1) * 4), nullptr, GL_MAP_READ_BIT);
   {
-    state_guard keep;
+    state_guard keep({0, 1});
     glUseProgram(program);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include <dstrans/formula.hpp>
+#include <dstrans/frame/slots.hpp>
 #include <dstrans/glsl.hpp>
 #include <dstrans/layout.hpp>
 #include <dstrans/light_mesh.hpp>
@@ -108,20 +109,43 @@ class debug_group {
 };
 
 // Saves the GL state dstrans's passes change and restores it when destroyed, so dstrans can run inside
-// an engine's frame: program, framebuffers, viewport, clip control, depth (test, clamp), blend, cull, scissor, vertex
-// array, active texture and the 2D textures of units 0-15, storage buffers 0-7.
+// an engine's frame: program, framebuffers, viewport, clip control, depth (test, write mask, function,
+// clamp), blend (enable, functions, equations), cull (enable, face, winding), scissor test, vertex array,
+// pixel pack and unpack alignment and buffers, the active texture unit, and every binding of the slot
+// table (dstrans/frame/slots.hpp): the 2D, 3D and 2D-array textures of each texture slot's units, each
+// image slot's image unit, each block slot's buffer range, and the generic uniform and storage buffer
+// bindings that binding a block changes. `storage_blocks` names further storage-buffer bindings the
+// guarded work uses (the formula runner's two).
 class state_guard {
  public:
-  state_guard();
+  explicit state_guard(const std::vector<GLuint>& storage_blocks = {});
   ~state_guard();
   state_guard(const state_guard&) = delete;
   state_guard& operator=(const state_guard&) = delete;
 
  private:
+  struct texture_unit {
+    GLuint unit;
+    GLint texture_2d, texture_3d, texture_2d_array;
+  };
+  struct image_unit {
+    GLuint unit;
+    GLint name, level, layered, layer, access, format;
+  };
+  struct buffer_range {
+    GLenum target;
+    GLuint index;
+    GLint name;
+    GLint64 start, size;
+  };
   GLint program_, draw_fb_, read_fb_, viewport_[4], clip_origin_, clip_depth_, depth_func_, blend_src_rgb_,
       blend_dst_rgb_, blend_src_a_, blend_dst_a_, blend_eq_rgb_, blend_eq_a_, cull_face_, front_face_,
-      vertex_array_, active_texture_, textures_[16], storage_[8];
+      vertex_array_, active_texture_, pack_alignment_, unpack_alignment_, pack_buffer_, unpack_buffer_,
+      uniform_buffer_, storage_buffer_;
   GLboolean depth_test_, depth_mask_, blend_, cull_, scissor_, depth_clamp_;
+  std::vector<texture_unit> textures_;
+  std::vector<image_unit> images_;
+  std::vector<buffer_range> buffers_;
 };
 
 // Evaluates shared formulas in compute shaders; programs are built on first use and kept.

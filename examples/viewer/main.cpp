@@ -5,11 +5,13 @@
 //   viewer examples/scenes/pane.json                 # until the window closes
 //   viewer examples/scenes/pane.json --frames 3      # three frames, the last title on stdout, then exit
 //   viewer examples/scenes/pane.json --frames 1 --out window.png   # and what the window showed
+//   viewer examples/scenes/pane.json --shaders shaders/glsl   # pass shaders read from a folder (hot reload)
 //
 // Mouse: drag to orbit, scroll to zoom. Keys: 1-4 technique (interlaced, peeling, forward, forward with
 // depth); S shadows (off, opaque, transparent); R refraction on/off; T transmittance (thesis, physical);
-// F the full pipeline (every effect planned, whether the scene calls for it or not); Esc quits.
-// A key that changes the plan rebuilds the renderer; orbiting only moves the camera.
+// F the full pipeline (every effect planned, whether the scene calls for it or not); L reloads the pass
+// shaders (from --shaders DIR; the embedded ones otherwise); Esc quits.
+// A key that changes the plan rebuilds the renderer, reading the shaders again; orbiting only moves the camera.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -30,7 +32,8 @@ namespace {
 
 using namespace dstrans;
 
-const char* const usage = "usage: viewer <scene.json> [--frames N [--out window.png]] [--width W] [--height H]\n";
+const char* const usage =
+    "usage: viewer <scene.json> [--frames N [--out window.png]] [--width W] [--height H] [--shaders DIR]\n";
 
 // What the keys change; a change asks for a new renderer.
 struct settings {
@@ -76,6 +79,7 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_R: o.refraction = o.refraction > 0.0f ? 0.0f : 8.0f; break;
     case GLFW_KEY_T: o.physical_transmittance = !o.physical_transmittance; break;
     case GLFW_KEY_F: o.force = o.force == effects{} ? effects::all() : effects{}; break;
+    case GLFW_KEY_L: break;  // the rebuild reads the shaders again
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); return;
     default: return;
   }
@@ -106,11 +110,11 @@ void on_scroll(GLFWwindow* w, double, double dy) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string file, out;
+  std::string file, out, shader_dir;
   int frames = 0, width = 960, height = 540;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    const bool valued = a == "--out" || a == "--frames" || a == "--width" || a == "--height";
+    const bool valued = a == "--out" || a == "--frames" || a == "--width" || a == "--height" || a == "--shaders";
     if (a == "--help" || a == "-h") {
       std::fputs(usage, stdout);
       return 0;
@@ -119,8 +123,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "viewer: %s needs a value\n%s", a.c_str(), usage);
       return 2;
     }
-    if (a == "--out") {
-      out = argv[++i];
+    if (a == "--out" || a == "--shaders") {
+      (a == "--out" ? out : shader_dir) = argv[++i];
     } else if (valued) {
       // The renderer's largest image, as dstrans render's (a window past the display's limits is an X error).
       int& v = a == "--frames" ? frames : a == "--width" ? width : height;
@@ -219,9 +223,10 @@ int main(int argc, char** argv) {
     glfwSetWindowTitle(window, title.c_str());
     ++drawn;
   };
+  const pass_shaders shaders = shader_dir.empty() ? pass_shaders() : pass_shaders(shader_dir);
   while (!glfwWindowShouldClose(window) && (frames == 0 || drawn < frames)) {
     st.now.changed = false;
-    const auto f = render::render_gl(*s, st.now.o, DSTRANS_SHADER_DIR, &hooks);
+    const auto f = render::render_gl(*s, st.now.o, shaders, &hooks);
     if (!f) {
       std::fprintf(stderr, "viewer: %s\n", f.error().c_str());
       glfwDestroyWindow(window);

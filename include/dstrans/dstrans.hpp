@@ -9,6 +9,7 @@
 #pragma once
 
 #include "format.hpp"
+#include "frame/slots.hpp"
 #include "formula.hpp"
 #include "fullscreen.hpp"
 #include "gbuffer.hpp"
@@ -20,6 +21,7 @@
 #include "light_mesh.hpp"
 #include "light_volume.hpp"
 #include "particles.hpp"
+#include "pass_shaders.hpp"
 #include "phong.hpp"
 #include "pipeline.hpp"
 #include "refraction.hpp"

@@ -6,6 +6,7 @@
 //   std::string code = src.str();                         // starts with "#version 450"
 //   src.add_file("shaders/glsl/compose.frag.glsl", {"DST_TRANSPARENCY"});   // a pass shader, its lines mapped
 //                                                         // to that file, its DST_ switches resolved
+//   src.add_text(text, "my_pass.frag.glsl", {});          // the same for text already in memory
 //   std::string errors = src.map_log(compiler_log);       // "0:12: ..." -> "include/dstrans/x.hpp:40: ..."
 #pragma once
 
@@ -124,16 +125,26 @@ class source {
     if (!text.empty() && text.back() != '\n') code_ += '\n';
   }
 
-  // Appends the text of file `path` (a hand-written pass shader), its lines mapped to that file, after
-  // the shared blocks it calls; a failure if it cannot be read.
+  // Appends the text of file `path` (a hand-written pass shader) as add_text does; a failure if it
+  // cannot be read.
+  result<bool> add_file(const std::string& path, const std::vector<std::string>& switches = {}) {
+    std::ifstream in(path);
+    if (!in) return failure{"cannot read GLSL file " + path};
+    std::ostringstream text;
+    text << in.rdbuf();
+    return add_text(text.str(), path, switches);
+  }
+
+  // Appends `shader` (a hand-written pass shader), its lines mapped to lines of `file`, after the shared
+  // blocks it calls; a failure if its switches are tested with #if.
   //
   // Sections under `#ifdef DST_...` / `#ifndef DST_...` (with `#else`, `#endif`) are resolved here, on
   // `switches` (the names that are on): what an absent effect needs is left out of the text, the shared
   // blocks it calls included, so a shader carries no code for an effect it does not run. Other
   // preprocessor lines pass through; `#if` on a DST_ name is an error (write #ifdef).
-  result<bool> add_file(const std::string& path, const std::vector<std::string>& switches = {}) {
-    std::ifstream in(path);
-    if (!in) return failure{"cannot read GLSL file " + path};
+  result<bool> add_text(const std::string& shader, const std::string& file, const std::vector<std::string>& switches = {}) {
+    std::istringstream in(shader);
+    const std::string& path = file;
     struct section {
       bool resolved, keep, was_keeping;
     };

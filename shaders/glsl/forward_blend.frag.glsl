@@ -4,10 +4,10 @@
 // where glass covers it, which lets a foreground object over glass leak in and rejects valid background
 // beside the glass (the two errors of Figure 4.7).
 layout(location = 0) out vec4 colour;
-layout(binding = 0) uniform sampler2D dst_forward_colour;
-layout(binding = 1) uniform sampler2D dst_forward_normal;
+layout(binding = DST_SLOT_FORWARD_LIT) uniform sampler2D dst_forward_colour;
+layout(binding = DST_SLOT_FORWARD_LIT + 1) uniform sampler2D dst_forward_normal;
 #ifdef DST_FORWARD_DEPTH
-layout(binding = 2) uniform sampler2D dst_forward_depth;
+layout(binding = DST_SLOT_FORWARD_LIT + 2) uniform sampler2D dst_forward_depth;
 #endif
 
 void main() {

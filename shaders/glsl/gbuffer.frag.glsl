@@ -5,7 +5,7 @@
 layout(location = 0) in vec3 world_normal;
 layout(location = 1) flat in uint surface_material;
 #ifdef DST_PEEL
-layout(binding = 13) uniform sampler2D dst_peel_depth;
+layout(binding = DST_SLOT_PEEL_DEPTH) uniform sampler2D dst_peel_depth;
 #endif
 
 void main() {

@@ -1,8 +1,8 @@
 // The k-buffer (TECHNIQUES.md S1): a list head per pixel and a pool of 16-byte nodes holding shading inputs
 // (depth bits, tangent, colour and alpha, the next node), and the hair's lighting, full (Eq. 2 with Eq. 1's
 // 25 Gaussian shadow taps) or cheap (diffuse, one tap). Shared by the capture and resolve passes.
-layout(binding = 24, r32ui) uniform coherent uimage2D dst_heads;
-layout(std430, binding = 23) coherent buffer dst_kbuffer {
+layout(binding = DST_SLOT_KBUFFER_HEADS, r32ui) uniform coherent uimage2D dst_heads;
+layout(std430, binding = DST_SLOT_KBUFFER_NODES) coherent buffer dst_kbuffer {
   uint count;     // nodes asked for; past the capacity, fragments went to the tail targets instead
   uint overflow;  // fragments that found no node
   uint capacity;

@@ -13,9 +13,9 @@ struct dst_particle_region {
   vec4 offset;           // the region's first texel
   vec4 dims;             // its cells per axis
 };
-layout(std430, binding = 28) readonly buffer dst_particle_regions { dst_particle_region regions[]; };
+layout(std430, binding = DST_SLOT_PARTICLE_REGIONS) readonly buffer dst_particle_regions { dst_particle_region regions[]; };
 #ifndef DST_PARTICLES_FORWARD
-layout(binding = 29) uniform sampler3D dst_volume_atlas;
+layout(binding = DST_SLOT_VOLUME_ATLAS) uniform sampler3D dst_volume_atlas;
 #endif
 
 // World units over which a particle fades out as it nears the surface behind it (soft particles): without

@@ -1,7 +1,7 @@
 // What every post-processing pass reads (dstrans::post_pass): its first texture input, and its parameters;
 // a pass with a second input declares it (binding 33). Taps past the image's border repeat the border.
-layout(binding = 32) uniform sampler2D dst_post_in0;
-layout(std140, binding = 34) uniform dst_post_block { vec4 params; } post;
+layout(binding = DST_SLOT_POST_INPUT) uniform sampler2D dst_post_in0;
+layout(std140, binding = DST_SLOT_POST_PARAMS) uniform dst_post_block { vec4 params; } post;
 layout(location = 0) out vec4 dst_post_colour;
 
 ivec2 dst_post_clamp(ivec2 p) { return clamp(p, ivec2(0), frame.size.xy - 1); }

@@ -1,5 +1,5 @@
 // Bloom's last pass (S3): the frame plus x times the blurred bright pass.
-layout(binding = 33) uniform sampler2D dst_post_in1;
+layout(binding = DST_SLOT_POST_INPUT + 1) uniform sampler2D dst_post_in1;
 
 void main() {
   ivec2 p = dst_pixel();

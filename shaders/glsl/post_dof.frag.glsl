@@ -1,6 +1,6 @@
 // Depth of field (S3): the frame where the G-buffer's surface is x world units from the camera, its
 // blurred copy where it is y nearer or farther, and between them in proportion.
-layout(binding = 33) uniform sampler2D dst_post_in1;
+layout(binding = DST_SLOT_POST_INPUT + 1) uniform sampler2D dst_post_in1;
 
 void main() {
   ivec2 p = dst_pixel();

@@ -4,8 +4,8 @@
 // (Eq. 2) unless DST_LAYERS_CHEAP; the tail cheaply, not at all with DST_LAYERS_TAILLESS (its opacity
 // still counts), or fully with DST_LAYERS_FORWARD (the reference, whose core holds every fragment anyway). Written premultiplied over the frame: colour + frame * alpha (alpha = what the frame keeps).
 layout(location = 0) out vec4 colour;
-layout(binding = 14) uniform sampler2D dst_tail;
-layout(binding = 15) uniform sampler2D dst_tail_optical_depth;
+layout(binding = DST_SLOT_KBUFFER_TAIL) uniform sampler2D dst_tail;
+layout(binding = DST_SLOT_KBUFFER_TAIL + 1) uniform sampler2D dst_tail_optical_depth;
 
 bool dst_nearer(uvec4 a, uvec4 b) {  // depths are positive floats: their bits order as uints
   if (a.x != b.x) return a.x < b.x;

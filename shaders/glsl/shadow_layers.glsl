@@ -3,9 +3,9 @@
 // drawn (the light pass reuses one map). dst_shadowed (lighting.glsl) reads layer dst_shadow_layer.
 #define DSTRANS_SHADOW_FETCH
 int dst_shadow_layer = 0;
-layout(binding = 30) uniform sampler2DArray dst_shadow_layers_depth;
+layout(binding = DST_SLOT_SHADOW_LAYERS) uniform sampler2DArray dst_shadow_layers_depth;
 #ifdef DST_TRANSPARENT_SHADOWS
-layout(binding = 31) uniform sampler2DArray dst_shadow_layers_colour;
+layout(binding = DST_SLOT_SHADOW_LAYERS + 1) uniform sampler2DArray dst_shadow_layers_colour;
 #endif
 vec4 dst_shadow_fetch(int target, ivec2 pixel) {
 #ifdef DST_TRANSPARENT_SHADOWS

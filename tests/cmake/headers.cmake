@@ -1,6 +1,7 @@
 # Fails if a public header pulls in anything but dstrans, GLM and the C++ standard library (DESIGN.md
-# principle 2): cmake -DCXX=... -DINCLUDE=... -DTU=... -P headers.cmake
-execute_process(COMMAND ${CXX} -std=c++17 -M -I${INCLUDE} ${TU} RESULT_VARIABLE rc OUTPUT_VARIABLE deps ERROR_VARIABLE err)
+# principle 2): cmake -DCXX=... -DINCLUDE=... -DGENERATED=... -DTU=... -P headers.cmake (GENERATED: the
+# build's generated headers)
+execute_process(COMMAND ${CXX} -std=c++17 -M -I${INCLUDE} -I${GENERATED} ${TU} RESULT_VARIABLE rc OUTPUT_VARIABLE deps ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "could not list the headers' dependencies:\n${err}")
 endif()

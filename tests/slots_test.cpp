@@ -1,0 +1,67 @@
+// The slot table (dstrans/frame/slots.hpp) and the embedded pass shaders (dstrans/pass_shaders.hpp).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <dstrans/frame/slots.hpp>
+#include <dstrans/pass_shaders.hpp>
+
+using namespace dstrans;
+
+TEST_CASE("the slot table is emitted into GLSL as one define per slot", "[slots]") {
+  glsl::source src;
+  add_slots(src);
+  for (const slot_desc& d : slot_table) {
+    INFO(d.name);
+    CHECK(src.str().find("#define DST_SLOT_" + std::string(d.name) + " " + std::to_string(d.binding) + "\n") !=
+          std::string::npos);
+    CHECK(binding(d.id) == d.binding);
+    CHECK(d.binding + d.count <= slot_bindings());
+  }
+  CHECK(binding(slot::frame) == 20);
+  CHECK(slot_bindings() == 35);
+}
+
+TEST_CASE("every pass shader of shaders/glsl is embedded, as the file holds it", "[slots]") {
+  const pass_shaders embedded;
+  const std::string dir = std::string(DSTRANS_SOURCE_DIR) + "/shaders/glsl";
+  const pass_shaders folder(dir);
+  CHECK(embedded.embedded());
+  CHECK(!folder.embedded());
+  std::set<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) files.insert(entry.path().filename().string());
+  const std::vector<std::string> names = pass_shaders::names();
+  CHECK(std::set<std::string>(names.begin(), names.end()) == files);
+  for (const std::string& name : names) {
+    INFO(name);
+    std::ifstream in(dir + "/" + name);
+    std::ostringstream text;
+    text << in.rdbuf();
+    auto e = embedded.text(name), f = folder.text(name);
+    REQUIRE(e);
+    REQUIRE(f);
+    CHECK(*e == text.str());
+    CHECK(*f == text.str());
+  }
+  CHECK(embedded.origin("frame.glsl") == "shaders/glsl/frame.glsl");
+  CHECK(folder.origin("frame.glsl") == dir + "/frame.glsl");
+  CHECK(embedded.text("no_such.glsl").error() == "no pass shader named no_such.glsl is embedded in dstrans");
+  CHECK(pass_shaders("/nonexistent").text("frame.glsl").error() == "cannot read GLSL file /nonexistent/frame.glsl");
+}
+
+TEST_CASE("a pass shader is added with its switches resolved and its lines mapped to its file", "[slots]") {
+  const pass_shaders shaders;
+  glsl::source with, without;
+  REQUIRE(shaders.add_to(with, "gbuffer.frag.glsl", {"DST_PEEL"}));
+  REQUIRE(shaders.add_to(without, "gbuffer.frag.glsl"));
+  CHECK(with.str().find("dst_peel_depth") != std::string::npos);
+  CHECK(without.str().find("dst_peel_depth") == std::string::npos);
+  bool mapped = false;
+  for (int line = 1; line <= 400; ++line) mapped = mapped || with.origin_of(line).file == "shaders/glsl/gbuffer.frag.glsl";
+  CHECK(mapped);
+  glsl::source bad;
+  CHECK(!bad.add_text("#if DST_X\n#endif\n", "x.glsl"));
+}
