@@ -18,6 +18,15 @@ int main() {
           __FILE__, __LINE__);
   const auto spirv = dstrans::spirv::compile(src, dstrans::spirv::stage::fragment, dstrans::spirv::api::vulkan);
   ok = ok && spirv && !spirv->empty();
+  // A pass shader of the reference pipeline, from the text in the package and the slot table.
+  dstrans::glsl::source pass;
+  dstrans::add_slots(pass);
+  const dstrans::pass_shaders shaders;
+  for (const char* file : {"frame.glsl", "fragment.glsl", "post.glsl", "post_tone.frag.glsl"})
+    ok = ok && shaders.add_to(pass, file, {"DST_SEPIA"});
+  const auto pass_spirv = dstrans::spirv::compile(pass, dstrans::spirv::stage::fragment, dstrans::spirv::api::vulkan);
+  if (!pass_spirv) std::printf("dstrans consumer: %s\n", pass_spirv.error().c_str());
+  ok = ok && pass_spirv && !pass_spirv->empty();
   // The GL backend makes Table 3.1's targets where this machine has EGL.
   if (auto ctx = dstrans::gl::headless_context::create()) {
     auto t = dstrans::gl::make_targets(dstrans::describe<dstrans::thesis_gbuffer>(), 8, 8, "consumer gbuffer", true);
