@@ -2,6 +2,7 @@
 # under the build's include folder, installed with the core), so that no installed program or consumer
 # reads the source tree. Editing, adding or removing a shader configures again on the next build.
 file(GLOB dstrans_pass_shader_files CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/shaders/glsl/*.glsl)
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${dstrans_pass_shader_files})
 set(dstrans_pass_shader_entries "")
 foreach(path ${dstrans_pass_shader_files})
   get_filename_component(name ${path} NAME)

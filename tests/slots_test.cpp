@@ -1,4 +1,5 @@
-// The slot table (dstrans/frame/slots.hpp) and the embedded pass shaders (dstrans/pass_shaders.hpp).
+// The slot table (dstrans/frame/slots.hpp), the shared blocks (frame/blocks.hpp) and the embedded pass
+// shaders (dstrans/pass_shaders.hpp).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -6,8 +7,10 @@
 #include <set>
 #include <sstream>
 
+#include <dstrans/frame/blocks.hpp>
 #include <dstrans/frame/slots.hpp>
 #include <dstrans/pass_shaders.hpp>
+#include <dstrans_spirv.hpp>
 
 using namespace dstrans;
 
@@ -64,4 +67,26 @@ TEST_CASE("a pass shader is added with its switches resolved and its lines mappe
   CHECK(mapped);
   glsl::source bad;
   CHECK(!bad.add_text("#if DST_X\n#endif\n", "x.glsl"));
+}
+
+TEST_CASE("frame.glsl declares the shared blocks at their slots", "[slots]") {
+  glsl::source src;
+  add_slots(src);
+  REQUIRE(pass_shaders().add_to(src, "frame.glsl"));
+  CHECK(src.has(text::dst_frame_data));
+  CHECK(src.has(text::dst_material_data));
+  CHECK(src.has(text::dst_light_data));
+  src.add("layout(location = 0) out vec4 o;\n"
+          "void main() { o = frame.ambient + materials[0].diffuse_alpha + lights[0].colour_cos_outer; }\n",
+          __FILE__, __LINE__);
+  const auto words = spirv::compile(src, spirv::stage::fragment, spirv::api::vulkan);
+  INFO(words.error());
+  REQUIRE(words);
+  const auto refl = spirv::reflect(*words);
+  REQUIRE(refl);
+  REQUIRE(refl->uniform_buffers.size() == 1);
+  CHECK(refl->uniform_buffers[0].binding == binding(slot::frame));
+  REQUIRE(refl->storage_buffers.size() == 2);
+  CHECK(refl->storage_buffers[0].binding == binding(slot::materials));
+  CHECK(refl->storage_buffers[1].binding == binding(slot::lights));
 }

@@ -1,11 +1,12 @@
-// What the renderers upload for a scene, laid out as shaders/glsl/frame.glsl declares it (std140 for the
-// frame block, std430 for materials and lights), and the per-frame options both backends share.
+// What the renderers upload for a scene (the blocks of dstrans/frame/blocks.hpp), and the per-frame
+// options both backends share.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include <dstrans/frame/blocks.hpp>
 #include <dstrans/interlace.hpp>
 #include <dstrans/light_volume.hpp>
 #include <dstrans/light_mesh.hpp>
@@ -140,21 +141,10 @@ inline const char* lookup_label(shadow_mode m) {
   return m == shadow_mode::off ? "" : m == shadow_mode::opaque ? " opaque shadows" : " transparent shadows";
 }
 
-struct frame_block {
-  glm::mat4 view_proj, inv_view_proj, view;
-  glm::vec4 camera_position, ambient;
-  glm::ivec4 size;
-  glm::vec4 params;  // refraction strength, shadow bias, the light whose shadow map hair reads (-1: none), k
-};
-
-struct material_block {
-  glm::vec4 diffuse_alpha, specular;
-};
-
-struct light_block {
-  glm::vec4 position_range, direction_kind, colour_cos_outer, cos_inner;
-  glm::mat4 shadow_view_proj, volume;
-};
+// The blocks of dstrans/frame/blocks.hpp, as the renderers fill them.
+using frame_block = shader::dst_frame_data;
+using material_block = shader::dst_material_data;
+using light_block = shader::dst_light_data;
 
 // The camera's frame block for an image of `o.width` x `o.height`.
 frame_block camera_frame(const scene& s, const options& o);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "format.hpp"
+#include "frame/blocks.hpp"
 #include "frame/slots.hpp"
 #include "formula.hpp"
 #include "fullscreen.hpp"
