@@ -1,4 +1,4 @@
-// The thesis's layouts (TECHNIQUES.md, S0): G-buffer (Table 3.1), light accumulation buffer (Table 3.2)
+// The thesis's layouts: G-buffer (Table 3.1), light accumulation buffer (Table 3.2)
 // and transparent shadow map (Table 3.3); and a compact G-buffer beside Table 3.1's.
 //
 //   static_assert(dstrans::thesis_gbuffer::bytes_per_pixel == 16);
@@ -18,7 +18,7 @@ using thesis_gbuffer = layout<surface,
                               target<format::rgba8, field::spec_intensity, field::spec_power, unused<2>>,
                               target<format::r32f, field::depth>>;
 
-// Beyond the thesis (issue 12): the same information in 8 bytes a pixel, 12 with the light buffer. The
+// Beyond the thesis: the same information in 8 bytes a pixel, 12 with the light buffer. The
 // normal in two channels octahedrally (at most 0.94 degrees off, measured), the specular terms beside
 // it, and no depth target: the pass that needs depth samples the depth attachment, which every renderer has.
 using compact_gbuffer = layout<surface,

@@ -4,7 +4,7 @@
 //   src.add_shared(dstrans::text::dst_surface);           // a shared block, once however often added
 //   src.add("void main() {}\n", __FILE__, __LINE__);      // generated or hand-written text
 //   std::string code = src.str();                         // starts with "#version 450"
-//   src.add_file("shaders/glsl/compose.frag.glsl", {"DST_TRANSPARENCY"});   // a pass shader, its lines mapped
+//   src.add_file("my_shaders/compose.frag.glsl", {"DST_TRANSPARENCY"});   // a pass shader, its lines mapped
 //                                                         // to that file, its DST_ switches resolved
 //   src.add_text(text, "my_pass.frag.glsl", {});          // the same for text already in memory
 //   std::string errors = src.map_log(compiler_log);       // "0:12: ..." -> "include/dstrans/x.hpp:40: ..."

@@ -55,7 +55,7 @@ DST_FN bool dst_none_keep(ivec2 p, ivec2 size) { return true; }
 DST_FN ivec2 dst_none_partner(ivec2 p, ivec2 size) { return p; }
 )
 
-// Edge-aware reconstruction of the other layer (issue 12): instead of the partner's sample alone, the
+// Edge-aware reconstruction of the other layer: instead of the partner's sample alone, the
 // samples of the other layer around a pixel (its 4-neighbours that the predicate puts in the other layer:
 // above and below for rows, left and right for columns, all four for the checker) are averaged with the
 // partner, each weighted by how surely it shows the same surface as the partner, in the spirit of

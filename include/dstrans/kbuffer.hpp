@@ -1,4 +1,4 @@
-// Many transparent layers (TECHNIQUES.md S1): per-pixel lists of shading inputs, the k nearest fragments
+// Many transparent layers: per-pixel lists of shading inputs, the k nearest fragments
 // shaded fully and blended in order (the core), the rest shaded cheaply and blended out of order (the
 // tail); and the hair shading and shadow the technique was measured with.
 //
@@ -15,7 +15,7 @@
 //   towards the viewer-facing normal of the strand (shift -0.1 and +0.1, exponents 80 and 20, TRT tinted by
 //   the hair's colour) with the half-vector form of Scheuermann (2004); the cheap shader is the diffuse term;
 // - Eq. 1 is read as visibility: V = sum_i w_i (1 - alpha)^(k d_i), d_i the distance behind the first
-//   occluder at tap i in shadow-map depth units, so R = V (R_d + R_R + R_TRT) and TECHNIQUES.md's S_n is
+//   occluder at tap i in shadow-map depth units, so R = V (R_d + R_R + R_TRT) and the paper's S_n is
 //   1 - V. Taps are Gaussian (sigma 1 texel) on a 5x5 grid for the core, the centre tap for the tail;
 // - a NaN or infinite input shades to 0, and specular exponents are taken within [0, 1024];
 // - the tail accumulates premultiplied colour and alpha (sum c a, sum a) and its transmittance

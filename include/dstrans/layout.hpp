@@ -10,7 +10,7 @@
 //   dstrans::glsl::source src;
 //   dstrans::glsl::add_layout<my_gbuffer>(src, "gbuffer");   // dst_gbuffer_write(s), dst_gbuffer_read(p)
 //
-// A layout that cannot work does not compile, with a sentence that says why (DESIGN.md principle 3).
+// A layout that cannot work does not compile, with a sentence that says why.
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// Light stored as its projection on a set of axes (TECHNIQUES.md S2): a light volume's cell keeps, per
+// Light stored as its projection on a set of axes: a light volume's cell keeps, per
 // axis, how much light arrives from around that axis, and a surface of normal N reads back
 // sum_i max(0, N . a_i) value_i.
 //

@@ -1,5 +1,5 @@
 // Closed meshes that bound a light's reach, drawn to shade only the pixels a point or spot light can
-// touch (TECHNIQUES.md S0, 3.2). A coarse polygon inscribed in a sphere or cone would cut off lit pixels
+// touch (the thesis, 3.2). A coarse polygon inscribed in a sphere or cone would cut off lit pixels
 // near its faces, so these meshes *enclose* the unit sphere / unit cone: every face lies at or outside it.
 //
 //   dstrans::mesh_data sphere = dstrans::sphere_mesh(1);   // 80 triangles around the unit sphere

@@ -1,4 +1,4 @@
-// Light volumes (TECHNIQUES.md S2): the light of a scene baked into a grid over a transparent object's
+// Light volumes: the light of a scene baked into a grid over a transparent object's
 // bounds, stored per cell on a basis of axes (light_basis.hpp), for particles to read instead of lighting
 // each fragment.
 //

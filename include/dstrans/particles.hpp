@@ -1,4 +1,4 @@
-// Particle systems as the renderers draw them (TECHNIQUES.md S2): where a system's particles are, the
+// Particle systems as the renderers draw them: where a system's particles are, the
 // box its light volume spans, and every particle of a scene as a camera-facing quad, sorted back to front
 // for blending over the deferred frame.
 //

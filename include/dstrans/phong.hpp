@@ -1,4 +1,4 @@
-// Lighting in the light-accumulation pass (TECHNIQUES.md S0, Eq. 2.1): Phong without the surface's k_d
+// Lighting in the light-accumulation pass (the thesis, Eq. 2.1): Phong without the surface's k_d
 // and k_s, which the compose pass applies, plus distance attenuation and spot falloff.
 //
 //   dstrans::light_sample s = dstrans::shader::dst_phong(n, l, v, 32.0f, light_rgb);

@@ -1,6 +1,6 @@
-// The deferred pipeline (TECHNIQUES.md S0) a set of effects needs: its passes, what each reads and
+// The deferred pipeline a set of effects needs: its passes, what each reads and
 // writes, the shader switches each compiles with, and its render targets. Only the effects in the set
-// get a pass, a target or a switch (DESIGN.md principle 5).
+// get a pass, a target or a switch.
 //
 //   // at run time, from a scene
 //   dstrans::pipeline_plan p = dstrans::plan_pipeline(dstrans::effects_of(dstrans::scene_features(s)));

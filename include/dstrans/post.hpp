@@ -1,4 +1,4 @@
-// Post-processing after the deferred frame (TECHNIQUES.md S3): a chain of effects, each (name, inputs,
+// Post-processing after the deferred frame: a chain of effects, each (name, inputs,
 // shader, outputs) over a registry of named textures, expanded into full-screen passes; and the formulas
 // the passes share with the CPU.
 //
@@ -99,7 +99,7 @@ struct post_effect {
   bool interlace = true;   // anti-aliasing: compare the surfaces in front (on an interlaced frame)
 };
 
-// A full-screen pass of an expanded chain: its shader file (shaders/glsl/), the registry names it reads
+// A full-screen pass of an expanded chain: its shader file (one of dstrans::pass_shaders), the registry names it reads
 // (texture inputs in order, "gbuffer" at the G-buffer's bindings) and the one it writes, its #ifdef
 // switches, and its parameters (x, y, z, w as the shader reads them).
 struct post_pass {

@@ -1,4 +1,4 @@
-// Screen-space refraction with depth rejection, and the compose blend (TECHNIQUES.md S0, 3.3, Eq. 3.3).
+// Screen-space refraction with depth rejection, and the compose blend (the thesis, 3.3, Eq. 3.3).
 //
 // The compose pass samples the G-buffer at the pixel and at its interlace partner; the lower-alpha
 // sample is the transparent S_t, the other the background S_b. The screen-space xy of S_t's normal

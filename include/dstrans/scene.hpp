@@ -1,5 +1,5 @@
 // A scene as the renderers take it: procedural shapes placed in the world, materials, lights, a camera.
-// Loading a scene file is the tools' business (tools/scene_json.hpp); this header knows no file format.
+// Loading a scene file is the caller's business (the dstrans command reads JSON); this header knows no file format.
 //
 //   dstrans::scene s;
 //   s.materials.push_back({{0.2f, 0.6f, 1.0f}, 0.4f, 0.8f, 64.0f, true});              // blue glass

@@ -1,4 +1,4 @@
-// Which effects a scene calls for, and why (DESIGN.md principle 5): a scene without glass must cost what
+// Which effects a scene calls for, and why: a scene without glass must cost what
 // a plain deferred renderer costs, so every effect is derived from the scene, never assumed.
 //
 //   std::vector<dstrans::feature> found = dstrans::scene_features(s);

@@ -1,4 +1,4 @@
-// Coloured shadows from transparent occluders (TECHNIQUES.md S0, 3.2.1, Eq. 3.1 and 3.2).
+// Coloured shadows from transparent occluders (the thesis, 3.2.1, Eq. 3.1 and 3.2).
 //
 // A shadow map rendered with an interlace predicate holds, for a transparent occluder, its depth and
 // colour on keep-pixels and the opaque occluder behind it on their partners. A lookup samples the texel

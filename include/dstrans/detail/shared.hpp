@@ -1,4 +1,4 @@
-// One formula, one text (DESIGN.md principle 1).
+// One formula, one text.
 //
 // A shared block is written once, in the subset of GLSL that GLM-based C++17 also accepts, inside
 // DSTRANS_SHARED(name, code...). The C++ compiler compiles the code into namespace dstrans::shader;

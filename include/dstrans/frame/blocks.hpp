@@ -1,5 +1,5 @@
 // The blocks every pass of the reference pipeline reads, written once for C++ and GLSL (DSTRANS_SHARED):
-// the frame (std140), each material and each light (std430). shaders/glsl/frame.glsl declares them at
+// the frame (std140), each material and each light (std430). the pass shader frame.glsl declares them at
 // the slots of frame/slots.hpp; a pass that names one gets its definition with it.
 //
 //   dstrans::shader::dst_light_data light{};          // C++: fill it and upload it as it is

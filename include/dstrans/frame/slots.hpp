@@ -25,7 +25,7 @@ enum class slot {
   peel_depth,        // depth peeling: the first layer's depth, which the second peels behind
   kbuffer_tail,      // the k-buffer's tail: its colour and optical depth
   forward_lit,       // forward rendering: the lit colour, the normal and (with depth) the depth
-  frame,             // the frame block (shaders/glsl/frame.glsl)
+  frame,             // the frame block (frame/blocks.hpp)
   materials,         // the materials
   lights,            // the lights
   kbuffer_nodes,     // the k-buffer's node pool
