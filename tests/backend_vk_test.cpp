@@ -189,3 +189,44 @@ TEST_CASE("VK: clip-space +y is the image's top row and counter-clockwise triang
   dev.destroy(*pipe);
   dev.destroy(*t);
 }
+
+TEST_CASE("VK: many timed passes go in one submission, each timed, and no more than were asked for", "[vk]") {
+  vk_fixture fx;
+  if (!open(fx)) return;
+  vk::device& dev = *fx.dev;
+  auto t = dev.make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}}, 64, 64, "passes", false);
+  REQUIRE(t);
+  auto clear = [&](float v) {
+    return [&, v](VkCommandBuffer cmd) {
+      dev.begin_rendering(cmd, *t, {glm::vec4(v)});
+      dev.end_rendering(cmd);
+    };
+  };
+  // The buffer begin_passes returns takes untimed commands between passes; the last pass's clear stays.
+  for (std::size_t capacity : {std::size_t(3), std::size_t(40)}) {
+    const VkCommandBuffer cmd = dev.begin_passes(capacity);
+    dev.record_pass(clear(0.25f));
+    clear(0.5f)(cmd);
+    dev.record_pass(clear(0.75f));
+    dev.record_pass(clear(1.0f));
+    auto ms = dev.submit_passes();
+    INFO(ms.error());
+    REQUIRE(ms);
+    REQUIRE(ms->size() == 4);
+    double passes = 0.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      CHECK((*ms)[k] >= 0.0);
+      passes += (*ms)[k];
+    }
+    CHECK(passes <= ms->back() + 1e-6);  // disjoint intervals inside the submission's
+    auto texels = dev.read_texels(*t, 0);
+    REQUIRE(texels);
+    CHECK((*texels)[0][0] == 255);
+  }
+  dev.begin_passes(1);
+  dev.record_pass(clear(0.0f));
+  dev.record_pass(clear(0.0f));
+  auto over = dev.submit_passes();
+  CHECK(over.error() == "2 passes were recorded into a submission begun for 1");
+  dev.destroy(*t);
+}

@@ -378,6 +378,29 @@ TEST_CASE("GL: a frame leaves the engine's GL state as it found it", "[render][g
   for (const auto& m : (*ctx)->debug_messages()) UNSCOPED_INFO(m);
 }
 
+TEST_CASE("a frame's time is its passes in one submission: at least their sum", "[render][gl][vk]") {
+  const scene s = example("glass_room.json");
+  for (backend b : backends)
+    for (render::technique t : {render::technique::interlaced, render::technique::forward}) {
+      options o = small(64, 36);
+      o.method = t;
+      o.frames = 2;
+      auto f = draw(b, s, o);
+      if (!f) continue;
+      INFO(name(b) << ", " << render::technique_name(t));
+      double passes = 0.0;
+      for (const auto& [pass, ms] : f->pass_ms) {
+        CHECK(ms >= 0.0);
+        passes += ms;
+      }
+      CHECK(f->frames == 2);
+      CHECK(f->pass_ms.size() >= 3);
+      CHECK(f->frame_ms > 0.0);
+      // Medians of sums and sums of medians differ a little; the passes are disjoint parts of the frame.
+      CHECK(passes <= f->frame_ms * 1.1 + 0.05);
+    }
+}
+
 TEST_CASE("the leak replay explains every pixel where forward rendering without depth differs", "[render][forward]") {
   const scene s = example("glass_room.json");
   options o = small(160, 90);

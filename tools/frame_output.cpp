@@ -41,16 +41,10 @@ double quantile(std::vector<double> v, double q) {
 }
 }  // namespace
 
-void summarize(const std::vector<std::map<std::string, double>>& frames, frame& out) {
+void summarize(const std::vector<std::map<std::string, double>>& frames, const std::vector<double>& totals, frame& out) {
   out.frames = int(frames.size());
   out.pass_ms.clear();
   if (frames.empty()) return;
-  std::vector<double> totals;
-  for (const auto& f : frames) {
-    double total = 0.0;
-    for (const auto& [pass, ms] : f) total += ms;
-    totals.push_back(total);
-  }
   for (const auto& [pass, ms] : frames.front()) {
     std::vector<double> v;
     for (const auto& f : frames) v.push_back(f.at(pass));

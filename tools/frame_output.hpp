@@ -41,7 +41,7 @@ struct frame {
   std::vector<glm::vec4> volume_texels;
   std::vector<std::pair<std::string, image>> buffers;  // in the order the passes make them
   std::map<std::string, double> pass_ms;  // the median over the frames rendered, per pass
-  double frame_ms = 0.0;                   // the median frame (sum of its passes)
+  double frame_ms = 0.0;                   // the median frame: its passes in one submission, first to last
   double frame_ms_spread = 0.0;            // the interquartile range of the frame times
   int frames = 0;
 };
@@ -53,8 +53,9 @@ struct layer_counts {
 };
 layer_counts count_layers(const frame& f);
 
-// Fills `out`'s timings from the pass times of each frame rendered.
-void summarize(const std::vector<std::map<std::string, double>>& frames, frame& out);
+// Fills `out`'s timings from the pass times of each frame rendered and each frame's whole GPU time as one
+// submission (`totals`, one a frame).
+void summarize(const std::vector<std::map<std::string, double>>& frames, const std::vector<double>& totals, frame& out);
 
 // What each channel of a buffer shows in its picture.
 enum class view_as { rgb, alpha, depth };

@@ -4,6 +4,7 @@
 #include <dstrans_gl.hpp>
 #include <algorithm>
 #include <cstddef>
+#include <deque>
 #include <memory>
 
 #include <dstrans/particles.hpp>
@@ -359,21 +360,38 @@ result<frame> render_gl(const scene& s, const options& o, const pass_shaders& sh
   };
 
   frame out;
-  std::vector<texel> shadow_picture;
-  gl::timer timer;
+  // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one): its colour is
+  // copied here before the next light's shadow pass draws over it.
+  gl::targets shadow_picture;
+  if (mode == shadow_mode::transparent &&
+      std::any_of(plan.lookups.begin(), plan.lookups.end(), [](shadow_mode lookup) { return lookup != shadow_mode::off; })) {
+    auto t = gl::make_targets({describe<thesis_shadow_map>()[1]}, o.shadow_size, o.shadow_size, "shadow picture", false);
+    if (!t) return failure{t.error()};
+    shadow_picture = *t;
+    r.targets.push_back(shadow_picture);
+  }
+  // A frame's passes go to the GPU without waiting: each between two timestamps, read when the frame is done.
+  std::deque<gl::timer> timers;
+  gl::timer whole;
+  std::vector<std::string> recorded;
   std::map<std::string, double> current;  // this frame's pass times
   std::vector<std::map<std::string, double>> frames;
+  std::vector<double> totals;  // each frame's whole GPU time
   auto timed = [&](const std::string& pass, auto&& draw) {
+    if (recorded.size() == timers.size()) timers.emplace_back();
+    gl::timer& timer = timers[recorded.size()];
+    recorded.push_back(pass);
     timer.begin();
     draw();
     timer.end();
-    current[pass] += timer.milliseconds();
   };
   const float clear_far[4] = {1.0f, 1.0f, 1.0f, 1.0f}, clear_opaque_black[4] = {0.0f, 0.0f, 0.0f, 1.0f},
               clear_zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   dstrans::camera view = s.view;
   for (int n = 0; hooks ? hooks->before(n, view) : n < std::max(o.frames, 1); ++n) {
     current.clear();
+    recorded.clear();
+    whole.begin();
     if (hooks) {
       frame_block moved = camera_frame(view, s.ambient, o);
       moved.params.z = camera.params.z;
@@ -459,8 +477,9 @@ result<frame> render_gl(const scene& s, const options& o, const pass_shaders& sh
           glBindVertexArray(scene_vao);
           glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
         });
-        // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
-        if (mode == shadow_mode::transparent && shadow_picture.empty()) shadow_picture = gl::read_texels(shadow_map, 1);
+        if (shadow_picture.framebuffer && shadow_layer == 0)
+          glCopyImageSubData(shadow_map.textures[1], GL_TEXTURE_2D, 0, 0, 0, 0, shadow_picture.textures[0], GL_TEXTURE_2D, 0,
+                             0, 0, 0, o.shadow_size, o.shadow_size, 1);
         if (baking)
           timed("bake", [&] {
             gl::debug_group g("bake pass, light " + std::to_string(i));
@@ -620,11 +639,14 @@ result<frame> render_gl(const scene& s, const options& o, const pass_shaders& sh
         glUseProgram(post_progs[k]);
         gl::draw_fullscreen(fullscreen_vao);
       });
+    whole.end();
+    for (std::size_t k = 0; k < recorded.size(); ++k) current[recorded[k]] += timers[k].milliseconds();
+    totals.push_back(whole.milliseconds());
     frames.push_back(current);
     if (hooks) hooks->after(shown.framebuffer, current);
   }
   if (frames.empty()) return failure{"no frame was drawn"};
-  summarize(frames, out);
+  summarize(frames, totals, out);
 
   const int w = o.width, h = o.height;
   if (!forward) {
@@ -668,9 +690,9 @@ result<frame> render_gl(const scene& s, const options& o, const pass_shaders& sh
     out.buffers.push_back({"light" + suffix, to_image(gl::read_texels(lb, 0), light_format, w, h, view_as::rgb)});
     out.buffers.push_back({"specular" + suffix, to_image(gl::read_texels(lb, 0), light_format, w, h, view_as::alpha)});
   }
-  if (!shadow_picture.empty())
-    out.buffers.push_back(
-        {"shadow_colour", to_image(shadow_picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
+  if (shadow_picture.framebuffer)
+    out.buffers.push_back({"shadow_colour", to_image(gl::read_texels(shadow_picture, 0), format::rgba8, o.shadow_size,
+                                                     o.shadow_size, view_as::rgb)});
   if (!post.passes.empty()) {
     out.buffers.push_back({"composed", to_image(gl::read_texels(*final_target, 0), final_format, w, h, view_as::rgb)});
     for (const std::string& effect : post.effects)

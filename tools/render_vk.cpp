@@ -1,5 +1,5 @@
-// Implements render_vk.hpp. Each pass is its own submission, timed by the device's timestamps, and
-// starts with a full memory barrier: the passes read what the one before wrote.
+// Implements render_vk.hpp. A frame is one submission of its passes, each between two timestamps and
+// starting with a full memory barrier: the passes read what the one before wrote.
 #include "render_vk.hpp"
 
 #include <algorithm>
@@ -549,7 +549,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   }
 
   // One bake dispatch a region with the lights in `lights`, reading the camera's frame and the shadow map.
-  auto bake = [&](int shadowed, VkBuffer lights) -> result<double> {
+  auto bake = [&](int shadowed, VkBuffer lights) -> result<std::function<void(VkCommandBuffer)>> {
     std::vector<VkDescriptorSet> region_sets;
     for (std::size_t k = 0; k < atlas.regions.size(); ++k) {
       bindings b = base;
@@ -560,7 +560,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
       if (!set) return failure{set.error()};
       region_sets.push_back(*set);
     }
-    return dev.submit([&](VkCommandBuffer cmd) {
+    return std::function<void(VkCommandBuffer)>([&, shadowed, region_sets](VkCommandBuffer cmd) {
       barrier(cmd);
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, bake_pipes[shadowed].handle);
       for (std::size_t k = 0; k < atlas.regions.size(); ++k) {
@@ -583,9 +583,25 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
 
   frame out;
   std::vector<texel> shadow_picture;
+  // Where the pictured shadow map's colour (RGBA8) is copied within the frame.
+  vk::buffer shadow_picture_buffer;
+  if (mode == shadow_mode::transparent &&
+      std::any_of(plan.lookups.begin(), plan.lookups.end(), [](shadow_mode lookup) { return lookup != shadow_mode::off; })) {
+    auto b = dev.make_buffer(VkDeviceSize(o.shadow_size) * VkDeviceSize(o.shadow_size) * 4u,
+                             VK_BUFFER_USAGE_TRANSFER_DST_BIT, "shadow picture");
+    if (!b) return failure{b.error()};
+    shadow_picture_buffer = *b;
+    r.buffers.push_back(*b);
+  }
   std::map<std::string, double> current;  // this frame's pass times
   std::vector<std::map<std::string, double>> frames;
-  auto timed = [&](const std::string& pass, auto&& record) { current[pass] += dev.submit(record); };
+  // The passes of the frame being recorded, by name, in the order of their timestamps.
+  std::vector<std::string> recorded;
+  auto timed = [&](const std::string& pass, const std::function<void(VkCommandBuffer)>& record) {
+    recorded.push_back(pass);
+    dev.record_pass(record);
+  };
+  std::vector<double> totals;  // each frame's one submission
   // Each shadowed light's view, made once for all frames.
   std::vector<VkBuffer> light_ubos(s.lights.size(), VK_NULL_HANDLE);
   for (std::size_t i = 0; i < s.lights.size(); ++i)
@@ -605,9 +621,14 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     vkCmdBindIndexBuffer(cmd, indices, 0, VK_INDEX_TYPE_UINT32);
     if (last > first) vkCmdDrawIndexed(cmd, std::uint32_t(last - first), 1, std::uint32_t(first), 0, 0);
   };
+  // At most: two G-buffers, the ambient pass, two bakes, the atlas, the compose, capture, resolve and
+  // particles; per light a shadow, a bake, a copy, a forward light and two light passes; the post chain.
+  const std::size_t max_passes = 16 + 6 * s.lights.size() + post.passes.size();
   for (int n = 0; n < std::max(o.frames, 1); ++n) {
     current.clear();
-    vkResetDescriptorPool(ctx.device, r.pool, 0);  // the last frame's submissions have all completed
+    recorded.clear();
+    vkResetDescriptorPool(ctx.device, r.pool, 0);  // the last frame's submission has completed
+    const VkCommandBuffer frame_cmd = dev.begin_passes(max_passes);
     // G-buffers: empty pixels are opaque black at the far plane. The second peeled layer reads the first's depth.
     for (int k = 0; k < layers; ++k) {
       const vk::pipeline& p = gbuffer_pipes[std::size_t(k)];
@@ -639,19 +660,18 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         dev.end_rendering(cmd);
       });
     }
-    dev.submit([&](VkCommandBuffer cmd) {
-      barrier(cmd);
-      for (const vk::targets& lb : light_buffers) {
-        dev.begin_rendering(cmd, lb, {glm::vec4(0.0f)});
-        dev.end_rendering(cmd);
-      }
-    });
+    barrier(frame_cmd);
+    for (const vk::targets& lb : light_buffers) {
+      dev.begin_rendering(frame_cmd, lb, {glm::vec4(0.0f)});
+      dev.end_rendering(frame_cmd);
+    }
     if (baking) {
-      std::memset(r.buffers[texels_index].mapped, 0, atlas_texels * sizeof(glm::vec4));  // the last submission has completed
+      // Written before the submission, which reads it first; the last frame's has completed.
+      std::memset(r.buffers[texels_index].mapped, 0, atlas_texels * sizeof(glm::vec4));
       if (bake_pipes[0].handle) {
-        auto ms = bake(0, unshadowed_buffer);
-        if (!ms) return failure{ms.error()};
-        current["bake"] += *ms;
+        auto rec = bake(0, unshadowed_buffer);
+        if (!rec) return failure{rec.error()};
+        timed("bake", *rec);
       }
     }
     std::size_t shadow_layer = 0;
@@ -672,16 +692,22 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
           draw_scene(cmd, 0, m.indices.size());
           dev.end_rendering(cmd);
         });
-        // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one).
-        if (mode == shadow_mode::transparent && shadow_picture.empty()) {
-          auto texels = dev.read_texels(shadow_map, 1);
-          if (!texels) return failure{texels.error()};
-          shadow_picture = *texels;
+        // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one): its colour
+        // is copied out before the next light's shadow pass draws over it.
+        if (mode == shadow_mode::transparent && shadow_layer == 0) {
+          barrier(frame_cmd);
+          relayout(frame_cmd, shadow_map.colors[1].handle, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+          VkBufferImageCopy copy{};
+          copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+          copy.imageExtent = {std::uint32_t(o.shadow_size), std::uint32_t(o.shadow_size), 1};
+          vkCmdCopyImageToBuffer(frame_cmd, shadow_map.colors[1].handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                 shadow_picture_buffer.handle, 1, &copy);
+          relayout(frame_cmd, shadow_map.colors[1].handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
         }
         if (baking) {
-          auto ms = bake(1, shadowed_buffers[shadow_layer]);
-          if (!ms) return failure{ms.error()};
-          current["bake"] += *ms;
+          auto rec = bake(1, shadowed_buffers[shadow_layer]);
+          if (!rec) return failure{rec.error()};
+          timed("bake", *rec);
         }
         if (particle_reference)
           timed("particles", [&](VkCommandBuffer cmd) {
@@ -828,9 +854,18 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         dev.end_rendering(cmd);
       });
     }
+    auto ms = dev.submit_passes();
+    if (!ms) return failure{ms.error()};
+    for (std::size_t k = 0; k < recorded.size(); ++k) current[recorded[k]] += (*ms)[k];
+    totals.push_back(ms->back());
     frames.push_back(current);
   }
-  summarize(frames, out);
+  summarize(frames, totals, out);
+  if (shadow_picture_buffer.mapped) {
+    shadow_picture.resize(std::size_t(o.shadow_size) * std::size_t(o.shadow_size));
+    const auto* bytes = static_cast<const std::uint8_t*>(shadow_picture_buffer.mapped);
+    for (std::size_t i = 0; i < shadow_picture.size(); ++i) std::memcpy(shadow_picture[i].data(), bytes + 4 * i, 4);
+  }
   if (baking) {
     const auto* t = static_cast<const glm::vec4*>(r.buffers[texels_index].mapped);
     out.volume_texels.assign(t, t + atlas_texels);

@@ -86,10 +86,6 @@ result<std::unique_ptr<device>> device::create(const context& ctx) {
   vkAllocateCommandBuffers(ctx.device, &ai, &d->cmd_);
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   vkCreateFence(ctx.device, &fci, ctx.allocator, &d->fence_);
-  VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-  qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  qci.queryCount = 2;
-  vkCreateQueryPool(ctx.device, &qci, ctx.allocator, &d->timestamps_);
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(ctx.physical_device, &props);
   d->timestamp_ns_ = double(props.limits.timestampPeriod);
@@ -105,7 +101,6 @@ result<std::unique_ptr<device>> device::create(const context& ctx) {
   if (!d->begin_rendering_ || !d->end_rendering_)
     return failure{"the device has no dynamic rendering (Vulkan 1.3, or VK_KHR_dynamic_rendering on 1.2)"};
   d->name(VK_OBJECT_TYPE_COMMAND_POOL, std::uint64_t(d->pool_), "dstrans commands");
-  d->name(VK_OBJECT_TYPE_QUERY_POOL, std::uint64_t(d->timestamps_), "dstrans timestamps");
   return d;
 }
 
@@ -518,13 +513,44 @@ void device::destroy(pipeline& p) {
 }
 
 double device::submit(const std::function<void(VkCommandBuffer)>& record) {
+  begin_passes(1);
+  record_pass(record);
+  return (*submit_passes())[0];
+}
+
+VkCommandBuffer device::begin_passes(std::size_t max_passes) {
+  // Two timestamps a pass and two for the whole submission; the pool grows between submissions.
+  const std::uint32_t needed = std::uint32_t(2 * max_passes + 2);
+  if (needed > timestamp_capacity_) {
+    if (timestamps_) vkDestroyQueryPool(ctx_.device, timestamps_, ctx_.allocator);
+    VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qci.queryCount = needed;
+    vkCreateQueryPool(ctx_.device, &qci, ctx_.allocator, &timestamps_);
+    name(VK_OBJECT_TYPE_QUERY_POOL, std::uint64_t(timestamps_), "dstrans timestamps");
+    timestamp_capacity_ = needed;
+  }
+  passes_ = 0;
+  max_passes_ = max_passes;
   vkResetCommandBuffer(cmd_, 0);
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   vkBeginCommandBuffer(cmd_, &bi);
-  vkCmdResetQueryPool(cmd_, timestamps_, 0, 2);
+  vkCmdResetQueryPool(cmd_, timestamps_, 0, needed);
   vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, 0);
+  return cmd_;
+}
+
+void device::record_pass(const std::function<void(VkCommandBuffer)>& record) {
+  if (passes_ < max_passes_)
+    vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, std::uint32_t(2 + 2 * passes_));
   record(cmd_);
+  if (passes_ < max_passes_)
+    vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_, std::uint32_t(3 + 2 * passes_));
+  ++passes_;
+}
+
+result<std::vector<double>> device::submit_passes() {
   vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_, 1);
   vkEndCommandBuffer(cmd_);
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
@@ -533,10 +559,17 @@ double device::submit(const std::function<void(VkCommandBuffer)>& record) {
   vkQueueSubmit(ctx_.queue, 1, &si, fence_);
   vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, UINT64_MAX);
   vkResetFences(ctx_.device, 1, &fence_);
-  std::uint64_t ticks[2] = {0, 0};
-  vkGetQueryPoolResults(ctx_.device, timestamps_, 0, 2, sizeof ticks, ticks, sizeof ticks[0],
-                        VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
-  return double(ticks[1] - ticks[0]) * timestamp_ns_ * 1e-6;
+  if (passes_ > max_passes_)
+    return failure{std::to_string(passes_) + " passes were recorded into a submission begun for " +
+                   std::to_string(max_passes_)};
+  std::vector<std::uint64_t> ticks(2 + 2 * passes_);
+  vkGetQueryPoolResults(ctx_.device, timestamps_, 0, std::uint32_t(ticks.size()), ticks.size() * sizeof ticks[0],
+                        ticks.data(), sizeof ticks[0], VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+  auto ms = [&](std::uint64_t from, std::uint64_t to) { return double(to - from) * timestamp_ns_ * 1e-6; };
+  std::vector<double> out;
+  for (std::size_t k = 0; k < passes_; ++k) out.push_back(ms(ticks[2 + 2 * k], ticks[3 + 2 * k]));
+  out.push_back(ms(ticks[0], ticks[1]));
+  return out;
 }
 
 void device::begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear) {

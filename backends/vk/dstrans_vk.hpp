@@ -7,7 +7,8 @@
 //   - GLSL compiled to SPIR-V at run time by glslang, cached by content hash (get_shader);
 //   - graphics and compute pipelines whose descriptor layouts come from SPIRV-Cross reflection, checked
 //     against the layout the pipeline draws into before it is built (make_graphics_pipeline, make_compute_pipeline);
-//   - one-shot command submission with GPU timestamps (submit), debug names (name);
+//   - one-shot command submission with GPU timestamps (submit), many timed passes in one submission
+//     (begin_passes, record_pass, submit_passes), debug names (name);
 //   - evaluation of a shared formula over many inputs in a compute shader (run_formula).
 //
 //   auto dev = dstrans::vk::device::create(ctx);   // ctx: the engine's VkInstance, VkDevice, queue, allocator
@@ -140,6 +141,15 @@ class device {
   // Records commands with `record`, submits them, waits, and returns the GPU time they took in ms.
   double submit(const std::function<void(VkCommandBuffer)>& record);
 
+  // Many timed passes in one submission, as a renderer runs a frame: begin_passes opens dstrans's command
+  // buffer for at most `max_passes` passes, record_pass records `record` between two timestamps (other
+  // commands may go into the returned buffer between passes, untimed), and submit_passes submits it all
+  // once, waits, and returns each pass's GPU time in ms in the order recorded, then the whole
+  // submission's (from its first command to its last); a failure if more passes were recorded than asked.
+  VkCommandBuffer begin_passes(std::size_t max_passes);
+  void record_pass(const std::function<void(VkCommandBuffer)>& record);
+  result<std::vector<double>> submit_passes();
+
   // Starts dynamic rendering into all of `t`, with a viewport of negative height so that clip-space +y
   // is the image's top row, as with GL's glClipControl(GL_UPPER_LEFT): one projection matrix serves both
   // APIs. `clear` holds one colour per target (and clears depth to 1); empty loads what is there.
@@ -169,6 +179,8 @@ class device {
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   VkQueryPool timestamps_ = VK_NULL_HANDLE;
+  std::uint32_t timestamp_capacity_ = 0;
+  std::size_t passes_ = 0, max_passes_ = 0;
   double timestamp_ns_ = 1.0;
   PFN_vkSetDebugUtilsObjectNameEXT set_name_ = nullptr;
   PFN_vkCmdBeginRendering begin_rendering_ = nullptr;
