@@ -404,6 +404,39 @@ TEST_CASE("a frame's time is its passes in one submission: at least their sum", 
     }
 }
 
+TEST_CASE("both renderers run the frame's schedule, pass by pass", "[render][gl][vk]") {
+  struct frame_case {
+    const char* scene;
+    render::technique method;
+    bool everything, particle_reference, post;
+  };
+  const frame_case cases[] = {{"pane.json", render::technique::interlaced, true, false, false},
+                              {"glass_room.json", render::technique::peeling, false, false, false},
+                              {"glass_room.json", render::technique::forward_depth, false, false, false},
+                              {"glass_room.json", render::technique::interlaced, false, false, true},
+                              {"hair.json", render::technique::interlaced, false, false, false},
+                              {"smoke.json", render::technique::interlaced, false, false, false},
+                              {"smoke.json", render::technique::interlaced, false, true, false}};
+  auto chain = load_post_chain(std::string(DSTRANS_SOURCE_DIR) + "/examples/post_chain.json");
+  REQUIRE(chain);
+  for (const frame_case& c : cases) {
+    scene s = example(c.scene);
+    if (c.post) s.post = *chain;
+    options o = small(64, 36);
+    o.method = c.method;
+    if (c.everything) o.force = effects::all();
+    if (c.particle_reference) o.particles = options::particle_light::forward;
+    std::vector<std::string> expected;
+    for (const scheduled_pass& p : render::schedule_of(s, render::plan_of(s, o), o).passes) expected.push_back(p.timer);
+    for (backend b : backends) {
+      auto f = draw(b, s, o);
+      if (!f) continue;
+      INFO(name(b) << " " << c.scene << ", " << render::technique_name(c.method));
+      CHECK(f->schedule == expected);
+    }
+  }
+}
+
 TEST_CASE("the leak replay explains every pixel where forward rendering without depth differs", "[render][forward]") {
   const scene s = example("glass_room.json");
   options o = small(160, 90);

@@ -155,6 +155,73 @@ frame_plan plan_of(const scene& s, const options& o) {
   return p;
 }
 
+frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o) {
+  frame_schedule out;
+  auto add = [&](const std::string& timer, const std::string& label, pass_kind kind, int light,
+                 std::vector<std::string> reads, std::vector<std::string> writes) {
+    out.passes.push_back({timer, label, kind, light, std::move(reads), std::move(writes)});
+  };
+  const std::string gbuffer[2] = {"gbuffer", "gbuffer 2"}, light_buffer[2] = {"light buffer", "light buffer 2"};
+  for (int k = 0; k < p.layers; ++k)
+    add("gbuffer", k ? "gbuffer pass, second layer" : "gbuffer pass", pass_kind::geometry, -1,
+        k ? std::vector<std::string>{"scene", gbuffer[0]} : std::vector<std::string>{"scene"}, {gbuffer[k]});
+  if (p.forward) add("ambient", "forward ambient pass", pass_kind::geometry, -1, {"scene"}, {"lit"});
+  const particle_plan smoke = particle_plan_of(s, p, o);
+  if (smoke.baking && !smoke.unshadowed_lights.empty())
+    add("bake", "bake pass", pass_kind::dispatch, -1, {"scene"}, {"volume texels"});
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const int l = int(i);
+    const std::string n = std::to_string(i);
+    const bool shadowed = p.lookups[i] != shadow_mode::off;
+    std::vector<std::string> reads{"scene"};
+    if (shadowed) {
+      add("shadow", "shadow pass, light " + n, pass_kind::geometry, l, {"scene"}, {"shadow map"});
+      if (smoke.baking) add("bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume texels"});
+      if (smoke.reference) add("particles", "shadow map into its layer, light " + n, pass_kind::transfer, l, {"shadow map"}, {"shadow layers"});
+      reads.push_back("shadow map");
+    }
+    if (p.forward) {
+      add("light", "forward light pass, light " + n, pass_kind::geometry, l, reads, {"lit"});
+      continue;
+    }
+    const pass_kind kind = volume_of(s.lights[i], o) == volume::fullscreen ? pass_kind::fullscreen : pass_kind::light_volume;
+    for (int k = 0; k < p.layers; ++k) {
+      std::vector<std::string> layer_reads = reads;
+      layer_reads[0] = gbuffer[k];
+      add("light", "light pass, light " + n + (k ? ", second layer" : ""), kind, l, layer_reads, {light_buffer[k]});
+    }
+  }
+  if (smoke.baking) add("bake", "bake pass, into the atlas", pass_kind::transfer, -1, {"volume texels"}, {"volume atlas"});
+  if (p.forward) {
+    add("blend", "forward blend pass", pass_kind::fullscreen, -1, {"lit"}, {"frame"});
+  } else {
+    std::vector<std::string> reads{gbuffer[0]};
+    // Light buffers start cleared: a scene without lights composes its ambient term alone.
+    if (!s.lights.empty()) reads.push_back(light_buffer[0]);
+    if (p.peeling) {
+      reads.push_back(gbuffer[1]);
+      if (!s.lights.empty()) reads.push_back(light_buffer[1]);
+    }
+    add("compose", "compose pass", pass_kind::fullscreen, -1, reads, {"frame"});
+  }
+  if (p.on.has(effect::many_layers) && !p.forward) {
+    std::vector<std::string> reads{"scene"};
+    if (p.shadows != shadow_mode::off && hair_shadow_light(p) >= 0) reads.push_back("shadow map");
+    add("capture", "capture pass", pass_kind::geometry, -1, reads, {"kbuffer"});
+    add("resolve", "resolve pass", pass_kind::fullscreen, -1, {"kbuffer", "frame"}, {"frame"});
+  }
+  if (smoke.on)
+    add("particles", "particle pass", pass_kind::geometry, -1,
+        {gbuffer[0], smoke.baking ? "volume atlas" : smoke.shadowed_lights.empty() ? "scene" : "shadow layers", "frame"},
+        {"frame"});
+  for (const post_pass& pass : p.post.passes) {
+    std::vector<std::string> reads;
+    for (const std::string& in : pass.inputs) reads.push_back(in == "gbuffer" ? gbuffer[0] : in);
+    add("post " + pass.effect, "post " + pass.name, pass_kind::fullscreen, -1, reads, {pass.output});
+  }
+  return out;
+}
+
 int hair_shadow_light(const frame_plan& p) {
   for (std::size_t i = p.lookups.size(); i-- > 0;)
     if (p.lookups[i] != shadow_mode::off) return int(i);

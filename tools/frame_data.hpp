@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <dstrans/frame/blocks.hpp>
+#include <dstrans/frame/schedule.hpp>
 #include <dstrans/interlace.hpp>
 #include <dstrans/light_volume.hpp>
 #include <dstrans/light_mesh.hpp>
@@ -178,6 +179,12 @@ struct particle_plan {
   std::vector<volume_light> shadowed_lights, unshadowed_lights;
 };
 particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o);
+
+// The passes a frame of `s` runs, in the order both renderers run them (dstrans/frame/schedule.hpp): its
+// resources are "scene" (the frame's input), the G-buffers, light buffers, the shadow map, the k-buffer,
+// the light volumes' texels and atlas, the shadow maps' layers, and "frame" (the composed image), which
+// the post chain reads; the frame's output is the post chain's.
+frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o);
 
 // The volume mesh a light is drawn with: none (full screen) for directional lights (and for every light
 // with options::fullscreen_lights), a sphere or a cone otherwise. A volume mesh is drawn with its back

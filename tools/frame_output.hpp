@@ -40,6 +40,7 @@ struct frame {
   // The light volumes' atlas as the last bake left it (render::particle_atlas's texels, x fastest).
   std::vector<glm::vec4> volume_texels;
   std::vector<std::pair<std::string, image>> buffers;  // in the order the passes make them
+  std::vector<std::string> schedule;      // the passes the last frame ran, by pass_ms's names, in order
   std::map<std::string, double> pass_ms;  // the median over the frames rendered, per pass
   double frame_ms = 0.0;                   // the median frame: its passes in one submission, first to last
   double frame_ms_spread = 0.0;            // the interquartile range of the frame times

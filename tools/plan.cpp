@@ -21,7 +21,7 @@ using json = nlohmann::ordered_json;
 const char* const usage =
     "usage: dstrans plan <scene.json> [--json] [--budget MIB]\n"
     "the effects the scene calls for (and why), and the passes, render targets and shader switches of the\n"
-    "interlaced deferred pipeline that runs exactly those effects\n";
+    "interlaced deferred pipeline that runs exactly those effects, and a frame's passes in the order they run\n";
 
 std::string joined(const std::vector<std::string>& words) {
   std::string out;
@@ -47,7 +47,10 @@ int plan(std::vector<std::string> args) {
       return 1;
     }
     const std::vector<feature> found = scene_features(*s);
-    const pipeline_plan& p = render::plan_of(*s, render::options{}).pipeline;
+    const render::options o;
+    const render::frame_plan frame = render::plan_of(*s, o);
+    const pipeline_plan& p = frame.pipeline;
+    const frame_schedule schedule = render::schedule_of(*s, frame, o);
     if (as_json) {
       json reasons = json::object(), passes = json::array(), targets = json::array();
       for (const feature& f : found) reasons[effect_name(f.what)] = f.why;
@@ -56,8 +59,12 @@ int plan(std::vector<std::string> args) {
       for (const planned_target& t : p.targets)
         targets.push_back({{"name", t.name}, {"format", t.format}, {"bytes_per_pixel", t.bytes_per_pixel},
                            {"size", t.shadow_map ? "shadow map" : t.volume ? "volume atlas" : "screen"}});
+      json frame_passes = json::array();
+      for (const scheduled_pass& pass : schedule.passes)
+        frame_passes.push_back({{"pass", pass.timer}, {"label", pass.label}, {"kind", pass_kind_name(pass.kind)},
+                                {"light", pass.light}, {"reads", pass.reads}, {"writes", pass.writes}});
       const json out{{"effects", p.on.names()}, {"reasons", reasons}, {"passes", passes}, {"targets", targets},
-                     {"bytes_per_pixel", p.bytes_per_pixel}};
+                     {"bytes_per_pixel", p.bytes_per_pixel}, {"schedule", frame_passes}};
       std::puts(out.dump().c_str());
       return 0;
     }
@@ -73,6 +80,10 @@ int plan(std::vector<std::string> args) {
       std::printf("  %-21s %-8s %3d bytes a %s\n", t.name.c_str(), t.format.c_str(), t.bytes_per_pixel,
                   t.shadow_map ? "shadow-map texel" : t.volume ? "volume-atlas texel" : "pixel");
     std::printf("%d bytes a pixel on screen\n", p.bytes_per_pixel);
+    std::printf("a frame, in order:\n");
+    for (const scheduled_pass& pass : schedule.passes)
+      std::printf("  %-36s %-12s reads %s; writes %s\n", pass.label.c_str(), pass_kind_name(pass.kind),
+                  joined(pass.reads).c_str(), joined(pass.writes).c_str());
     return 0;
   } catch (const usage_error& e) {
     std::fprintf(stderr, "dstrans plan: %s\n%s", e.message.c_str(), usage);

@@ -446,11 +446,11 @@ result<frame> render_gl(const scene& s, const options& o, const pass_shaders& sh
     // Lights, each shadowed spot light right after its own shadow pass (one shadow map serves them all),
     // into each layer's light buffer, or (forward) over all geometry again into the lit colour.
     for (const gl::targets& lb : light_buffers) glClearNamedFramebufferfv(lb.framebuffer, GL_COLOR, 0, clear_zero);
-    if (baking)
+    if (baking) glClearNamedBufferData(volume_texels, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
+    if (bake_prog)
       timed("bake", [&] {
         gl::debug_group g("bake pass");
-        glClearNamedBufferData(volume_texels, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
-        if (bake_prog) bake(bake_prog, unshadowed_buffer);
+        bake(bake_prog, unshadowed_buffer);
       });
     std::size_t shadow_layer = 0;
     for (std::size_t i = 0; i < s.lights.size(); ++i) {
@@ -647,6 +647,7 @@ result<frame> render_gl(const scene& s, const options& o, const pass_shaders& sh
   }
   if (frames.empty()) return failure{"no frame was drawn"};
   summarize(frames, totals, out);
+  out.schedule = recorded;
 
   const int w = o.width, h = o.height;
   if (!forward) {

@@ -861,6 +861,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
     frames.push_back(current);
   }
   summarize(frames, totals, out);
+  out.schedule = recorded;
   if (shadow_picture_buffer.mapped) {
     shadow_picture.resize(std::size_t(o.shadow_size) * std::size_t(o.shadow_size));
     const auto* bytes = static_cast<const std::uint8_t*>(shadow_picture_buffer.mapped);

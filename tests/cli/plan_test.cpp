@@ -74,11 +74,22 @@ TEST_CASE("plan --json: plain deferred without glass, then exactly one effect mo
   for (const plan_facts* f : {&plain, &pane, &refractive}) CHECK(minus(f->switches, seen.switches).empty());
 }
 
+TEST_CASE("plan --json lists a frame's passes in order, each light's among them", "[cli][plan]") {
+  const auto r = run("plan " + ladder_scene(true, true, true) + " --json", "");
+  REQUIRE(r.status == 0);
+  const json p = json::parse(r.out);
+  std::vector<std::string> order;
+  for (const json& pass : p["schedule"]) order.push_back(pass["label"].get<std::string>());
+  CHECK(order == std::vector<std::string>{"gbuffer pass", "shadow pass, light 0", "light pass, light 0", "compose pass"});
+}
+
 TEST_CASE("plan explains itself in words, and refuses bad input", "[cli][plan]") {
   const auto r = run("plan " + ladder_scene(true, false, false), "");
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("transparency         objects[1] has material 1 with alpha 0.4"));
   CHECK_THAT(r.out, Catch::Contains("20 bytes a pixel on screen"));
+  CHECK_THAT(r.out, Catch::Contains("a frame, in order:\n  gbuffer pass "));
+  CHECK_THAT(r.out, Catch::Contains("shadow pass, light 0"));
   CHECK(run("plan", "").status == 2);
   CHECK(run("plan a.json --fast", "").status == 2);
   const auto missing = run("plan /nonexistent/scene.json", "");

@@ -1,0 +1,89 @@
+// The frame's schedule (dstrans/frame/schedule.hpp, render::schedule_of): passes in order, each read after
+// its write, and no pass for an effect the frame does not draw.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+
+#include <frame_data.hpp>
+#include <scene_json.hpp>
+
+using namespace dstrans;
+
+namespace {
+
+std::size_t count(const frame_schedule& s, const std::string& timer) {
+  return std::size_t(std::count_if(s.passes.begin(), s.passes.end(), [&](const scheduled_pass& p) { return p.timer == timer; }));
+}
+
+scene example(const std::string& file) {
+  auto s = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/" + file);
+  INFO(s.error());
+  REQUIRE(s);
+  return *s;
+}
+
+}  // namespace
+
+TEST_CASE("check_schedule finds a read before its write and a write nothing reads", "[schedule]") {
+  frame_schedule s;
+  s.passes.push_back({"gbuffer", "gbuffer pass", pass_kind::geometry, -1, {"scene"}, {"gbuffer"}});
+  s.passes.push_back({"compose", "compose pass", pass_kind::fullscreen, -1, {"gbuffer"}, {"frame"}});
+  CHECK(check_schedule(s, {"scene"}, {"frame"}));
+  CHECK(check_schedule(s, {}, {"frame"}).error() == "gbuffer pass reads scene, which no pass before it writes");
+  CHECK(check_schedule(s, {"scene"}, {}).error() == "compose pass writes frame, which nothing reads");
+  std::swap(s.passes[0], s.passes[1]);
+  CHECK(check_schedule(s, {"scene"}, {"frame"}).error() == "compose pass reads gbuffer, which no pass before it writes");
+  CHECK(std::string(pass_kind_name(pass_kind::light_volume)) == "light volume");
+}
+
+TEST_CASE("every example scene's schedule reads what it wrote before, under every technique and setting", "[schedule]") {
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes")) {
+    if (entry.path().extension() != ".json") continue;
+    const scene s = example(entry.path().filename().string());
+    for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward,
+                                render::technique::forward_depth})
+      for (render::shadow_mode m : render::all_lookups)
+        for (auto particles : {render::options::particle_light::six_axes, render::options::particle_light::forward}) {
+          render::options o;
+          o.method = t;
+          o.shadows = m;
+          o.particles = particles;
+          const render::frame_plan p = render::plan_of(s, o);
+          const frame_schedule sched = render::schedule_of(s, p, o);
+          INFO(entry.path().filename().string() << ", " << render::technique_name(t) << ", shadows "
+                                                << render::shadow_name(m) << ", particles " << int(particles));
+          const auto ok = check_schedule(sched, {"scene"}, {p.post.output});
+          INFO(ok.error());
+          CHECK(ok);
+          std::size_t shadowed = 0;
+          for (render::shadow_mode lookup : p.lookups) shadowed += lookup != render::shadow_mode::off;
+          CHECK(count(sched, "shadow") == shadowed);
+          CHECK(count(sched, "light") == s.lights.size() * std::size_t(p.forward ? 1 : p.layers));
+          CHECK(count(sched, "gbuffer") == std::size_t(p.layers));
+          for (const scheduled_pass& pass : sched.passes)
+            if (pass.timer == "shadow" || pass.timer == "light") CHECK((pass.light >= 0 && pass.light < int(s.lights.size())));
+        }
+  }
+}
+
+TEST_CASE("a schedule has no pass for an effect the frame does not draw", "[schedule]") {
+  render::options o;
+  const scene pane = example("pane.json"), hair = example("hair.json"), smoke = example("smoke.json");
+  const frame_schedule glass = render::schedule_of(pane, render::plan_of(pane, o), o);
+  for (const char* absent : {"capture", "resolve", "particles", "bake", "ambient", "blend"}) {
+    INFO(absent);
+    CHECK(count(glass, absent) == 0);
+  }
+  const frame_schedule strands = render::schedule_of(hair, render::plan_of(hair, o), o);
+  CHECK(count(strands, "capture") == 1);
+  CHECK(count(strands, "resolve") == 1);
+  const frame_schedule baked = render::schedule_of(smoke, render::plan_of(smoke, o), o);
+  CHECK(count(baked, "particles") == 1);
+  CHECK(count(baked, "bake") >= 2);  // the lights, and the texels into the atlas
+  o.method = render::technique::forward;
+  const frame_schedule forward = render::schedule_of(smoke, render::plan_of(smoke, o), o);
+  CHECK(count(forward, "particles") == 0);  // forward rendering draws no particle systems
+  CHECK(count(forward, "compose") == 0);
+  CHECK(count(forward, "blend") == 1);
+}
