@@ -428,6 +428,11 @@ int bench(std::vector<std::string> args) {
     for (const std::string& a : operands(args)) throw usage_error{"unknown argument '" + a + "'"};
     if (out.empty()) throw usage_error{"bench needs --out DIR"};
     if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
+    const auto shipped = shipped_files();  // the scenes and the report script
+    if (!shipped) {
+      std::fprintf(stderr, "dstrans bench: %s\n", shipped.error().c_str());
+      return 1;
+    }
     // Checked before the minutes of measuring; results.json and the report replace the previous run's
     // only once all of them are written (bench.json lists them).
     auto dir = output_dir::open(out, "bench.json");
@@ -438,11 +443,6 @@ int bench(std::vector<std::string> args) {
     auto g = open_gpu(backend);
     if (!g) {
       std::fprintf(stderr, "dstrans bench: %s\n", g.error().c_str());
-      return 1;
-    }
-    const auto shipped = shipped_files();
-    if (!shipped) {
-      std::fprintf(stderr, "dstrans bench: %s\n", shipped.error().c_str());
       return 1;
     }
     std::map<std::string, scene> scenes;
