@@ -16,7 +16,7 @@
 #include <dstrans/light_volume.hpp>
 #include <render_gl.hpp>
 #include <render_vk.hpp>
-#include <frame_data.hpp>
+#include <dstrans/frame/plan.hpp>
 #include <leaks.hpp>
 #include <passes.hpp>
 #include <dstrans_spirv.hpp>

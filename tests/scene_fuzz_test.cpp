@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include <frame_data.hpp>
+#include <dstrans/frame/plan.hpp>
 #include <scene_json.hpp>
 
 using namespace dstrans;

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include <frame_data.hpp>
+#include <dstrans/frame/plan.hpp>
 #include <scene_json.hpp>
 
 using namespace dstrans;

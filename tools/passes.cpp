@@ -115,10 +115,6 @@ void add_light_layout(glsl::source& src, const std::string& name, bool float_tar
   else glsl::add_layout<thesis_light_buffer>(src, name, o);
 }
 
-target_desc final_target_desc(bool float_targets) {
-  return {float_targets ? format::rgba32f : format::rgba8, {"r", "g", "b", "a"}};
-}
-
 result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode mode, bool volume, const options& o) {
   pass_sources p;
   p.vertex.add_shared(text::dst_fullscreen);

@@ -11,7 +11,7 @@
 #include <dstrans/pass_shaders.hpp>
 #include <dstrans/result.hpp>
 
-#include "frame_data.hpp"
+#include <dstrans/frame/plan.hpp>
 
 namespace dstrans::render {
 
@@ -20,8 +20,6 @@ using float_light_buffer = layout<light_sample, target<format::rgba32f, field::l
 // The light buffer's targets, and its layout's GLSL, for the options' precision.
 std::vector<target_desc> light_targets(bool float_targets);
 void add_light_layout(glsl::source& src, const std::string& name, bool float_targets, const glsl::layout_options& o);
-// The final image's target.
-target_desc final_target_desc(bool float_targets);
 
 // Table 3.3 for transparent shadows; a plain depth map for opaque ones.
 using opaque_shadow_map = layout<surface, target<format::r32f, field::depth>>;

@@ -9,7 +9,7 @@
 #include <dstrans/scene_features.hpp>
 
 #include "cli.hpp"
-#include "frame_data.hpp"
+#include <dstrans/frame/plan.hpp>
 #include "scene_json.hpp"
 
 namespace dstrans::cli {

@@ -533,7 +533,7 @@ result<frame> render_gl(const scene& s, const options& o, const pass_shaders& sh
             glBindVertexArray(fullscreen_vao);
             glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3, 1, GLuint(i));
           } else {
-            // Back faces, depth clamped: each pixel the volume covers is lit once (frame_data.hpp, volume).
+            // Back faces, depth clamped: each pixel the volume covers is lit once (dstrans/frame/plan.hpp, volume).
             glEnable(GL_CULL_FACE);
             glCullFace(GL_FRONT);
             glEnable(GL_DEPTH_CLAMP);

@@ -10,7 +10,7 @@
 #include <dstrans/result.hpp>
 #include <dstrans/scene.hpp>
 
-#include "frame_data.hpp"
+#include <dstrans/frame/plan.hpp>
 #include "frame_output.hpp"
 
 namespace dstrans::render {

@@ -243,7 +243,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
   }
 
   // Light pipelines by [lookup][volume], for the lookups lights use; volumes are drawn with their back
-  // faces, depth clamped (frame_data.hpp, volume).
+  // faces, depth clamped (dstrans/frame/plan.hpp, volume).
   compiled light_shaders[3][2]{};
   vk::pipeline light_pipes[3][2]{};
   for (shadow_mode k : all_lookups)

@@ -8,7 +8,7 @@
 #include <dstrans/scene.hpp>
 #include <dstrans_vk.hpp>
 
-#include "frame_data.hpp"
+#include <dstrans/frame/plan.hpp>
 #include "frame_output.hpp"
 
 namespace dstrans::render {

@@ -10,6 +10,8 @@
 
 #include "format.hpp"
 #include "frame/blocks.hpp"
+#include "frame/plan.hpp"
+#include "frame/schedule.hpp"
 #include "frame/slots.hpp"
 #include "formula.hpp"
 #include "fullscreen.hpp"

@@ -1,0 +1,495 @@
+// What a frame of the reference pipeline is, API-neutrally: the options a frame is drawn with, the plan
+// derived from a scene's effects (frame_plan, plan_of), the passes in order (schedule_of), and the blocks
+// the passes read (dstrans/frame/blocks.hpp) as a scene fills them. Backends run it; an engine may read it.
+//
+//   dstrans::render::options o;                    // a technique, a size, shadows, ...
+//   const dstrans::render::frame_plan p = dstrans::render::plan_of(scene, o);
+//   for (const dstrans::scheduled_pass& pass : dstrans::render::schedule_of(scene, p, o).passes) ...
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "../interlace.hpp"
+#include "../layout.hpp"
+#include "../light_mesh.hpp"
+#include "../light_volume.hpp"
+#include "../particles.hpp"
+#include "../pipeline.hpp"
+#include "../post.hpp"
+#include "../result.hpp"
+#include "../scene.hpp"
+#include "blocks.hpp"
+#include "schedule.hpp"
+
+namespace dstrans::render {
+
+enum class shadow_mode { off, opaque, transparent };
+
+// interlaced: the thesis's single G-buffer with transparent rows; peeling: deferred depth peeling, two
+// full G-buffers and light buffers (4.1.2); forward, forward_depth: multi-pass forward rendering with
+// the same interlacing, refraction checked by de-interlaced alpha or by depth (4.1.3, 4.1.4).
+enum class technique { interlaced, peeling, forward, forward_depth };
+inline bool is_forward(technique t) { return t == technique::forward || t == technique::forward_depth; }
+
+// The G-buffer's layout: Table 3.1's (16 bytes a pixel), or compact_gbuffer (8 bytes, depth read from the
+// depth attachment).
+enum class gbuffer_layout { thesis, compact };
+inline const char* layout_name(gbuffer_layout l) { return l == gbuffer_layout::thesis ? "thesis" : "compact"; }
+
+// Which pixels of the interlaced G-buffer keep glass (interlace.hpp): the thesis's rows, columns, or the
+// 2x2 checker of inferred lighting. Shadow maps keep the thesis's rows.
+enum class predicate { rows, columns, checker };
+
+struct options {
+  technique method = technique::interlaced;
+  predicate interlace = predicate::rows;
+  gbuffer_layout layout = gbuffer_layout::thesis;
+  // How the compose pass finds a pixel's other layer: the partner's sample (the thesis), or the edge-aware
+  // reconstruction from the other layer's samples around it (dst_reconstruct).
+  bool reconstruct = false;
+  int width = 320, height = 180;
+  float refraction = 8.0f;      // strength in pixels; 0 turns refraction off
+  // A fraction of the receiver's distance from the light, along the light's axis: the receiver is moved
+  // that far towards the light before it is compared with the shadow map (in linear depth), which removes
+  // self-shadowing ("acne") at the cost of light leaking under occluders that touch their receiver. A
+  // fraction, so that a scene scaled uniformly keeps its shadows.
+  float shadow_bias = 0.005f;
+  int shadow_size = 512;
+  shadow_mode shadows = shadow_mode::transparent;  // for spot lights that cast them
+  // Light through glass: the thesis's min(I_L, C) (Eq. 3.2), or the physically based I_L C.
+  bool physical_transmittance = false;
+  int frames = 1;  // frames rendered with the same resources; times are their medians
+  // Light buffers and the final image in RGBA32F instead of RGBA8: additive light does not saturate at 1
+  // and a NaN or infinity stays visible instead of being stored as 0 (for checking a frame's numbers).
+  bool float_targets = false;
+  // The k-buffer (many_layers): how many nearest fragments a pixel shades fully (1 to
+  // 32), and how the rest are shaded: the forward reference (all in order, all shaded fully), deferred
+  // (the tail cheaply), tailless (the tail's opacity only), cheap (everything cheaply), or weighted
+  // blended OIT instead of lists (the peer).
+  int kbuffer_k = 8;
+  std::uint32_t kbuffer_nodes = 0;  // the node pool's size; 0: kbuffer_nodes_per_pixel a pixel
+  enum class layers { forward, deferred, tailless, cheap, wboit } kbuffer_variant = layers::deferred;
+  // Particle systems (light_volumes): lit from light volumes of `volume_cells` cells a
+  // side on S2's six or four axes or on fourteen (a user-supplied set: the six and the cube's eight
+  // corners), or by the forward reference, which lights each fragment by every light.
+  enum class particle_light { six_axes, four_axes, fourteen_axes, forward } particles = particle_light::six_axes;
+  int volume_cells = 16;
+  // Every light drawn as a full-screen triangle instead of its volume mesh: the same light in every pixel
+  // the mesh covers, for checking the meshes (attenuation and falloff leave the rest at zero).
+  bool fullscreen_lights = false;
+  // Effects planned even where the scene or the other options leave them nothing to do (the full
+  // pipeline, for comparisons): refraction of strength 0, say, runs its code and moves no sample.
+  effects force;
+};
+
+// What a frame of `s` with options `o` consists of, derived once for both backends from the effects the
+// scene calls for (dstrans::scene_features), less those the options turn off, plus options::force.
+struct frame_plan {
+  effects on;
+  pipeline_plan pipeline;  // the passes and targets of `on` (dstrans plan prints it)
+  shadow_mode shadows;     // the shadow map: off, opaque (depth), transparent (depth and colour)
+  std::vector<shadow_mode> lookups;  // per light: no shadow, the plain lookup, or Eq. 3.1's
+  bool forward, forward_depth, peeling;
+  int layers;              // G-buffers (and light buffers): 0 forward, 2 peeling, 1 interlaced
+  post_plan post;          // the scene's post-processing chain (deferred techniques only; in pipeline too)
+  bool uses(shadow_mode lookup) const {
+    for (shadow_mode m : lookups)
+      if (m == lookup) return true;
+    return false;
+  }
+};
+frame_plan plan_of(const scene& s, const options& o);
+// Whether the options' images (the frame and the shadow map) fit a device whose images and viewports are
+// at most `largest` texels a side: checked by both renderers before they allocate anything.
+result<bool> fits_device(const options& o, int largest);
+// The light whose shadow map the hair reads (Eq. 1): the last one drawn, as the maps share targets; -1: none.
+int hair_shadow_light(const frame_plan& p);
+// The names the command line, the benchmark and the viewer give techniques, shadows and k-buffer variants.
+inline const char* technique_name(technique t) {
+  switch (t) {
+    case technique::interlaced: return "interlaced";
+    case technique::peeling: return "peeling";
+    case technique::forward: return "forward";
+    case technique::forward_depth: return "forward-depth";
+  }
+  return "?";
+}
+inline const char* predicate_name(predicate p) {
+  return p == predicate::rows ? "rows" : p == predicate::columns ? "columns" : "checker";
+}
+inline const char* shadow_name(shadow_mode m) {
+  return m == shadow_mode::off ? "off" : m == shadow_mode::opaque ? "opaque" : "transparent";
+}
+inline const char* layers_name(options::layers v) {
+  switch (v) {
+    case options::layers::forward: return "forward";
+    case options::layers::deferred: return "deferred";
+    case options::layers::tailless: return "tailless";
+    case options::layers::cheap: return "cheap";
+    case options::layers::wboit: return "wboit";
+  }
+  return "?";
+}
+
+inline const char* particle_light_name(options::particle_light p) {
+  switch (p) {
+    case options::particle_light::six_axes: return "six-axes";
+    case options::particle_light::four_axes: return "four-axes";
+    case options::particle_light::fourteen_axes: return "fourteen-axes";
+    case options::particle_light::forward: return "forward";
+  }
+  return "?";
+}
+
+constexpr shadow_mode all_lookups[] = {shadow_mode::off, shadow_mode::opaque, shadow_mode::transparent};
+// How programs and pipelines of a lookup are labelled: "", " opaque shadows", " transparent shadows".
+inline const char* lookup_label(shadow_mode m) {
+  return m == shadow_mode::off ? "" : m == shadow_mode::opaque ? " opaque shadows" : " transparent shadows";
+}
+
+// The blocks of dstrans/frame/blocks.hpp, as the renderers fill them.
+using frame_block = shader::dst_frame_data;
+using material_block = shader::dst_material_data;
+using light_block = shader::dst_light_data;
+
+// The camera's frame block for an image of `o.width` x `o.height`.
+frame_block camera_frame(const scene& s, const options& o);
+// The same for camera `c` (a viewer's, moving from frame to frame).
+frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o);
+// The same, seen from spot light `l` of light_blocks (its shadow map's view and projection).
+frame_block light_frame(const scene& s, const light_block& l, const options& o);
+std::vector<material_block> material_blocks(const scene& s);
+std::vector<light_block> light_blocks(const scene& s);
+// Light volumes: the basis the options pick, the atlas of the scene's particle systems (a region of
+// options::volume_cells cells a side over each system's bounds), and each system's region as the particle
+// pass reads it.
+basis particle_basis(const options& o);
+volume_atlas particle_atlas(const scene& s, const options& o);
+struct particle_region {
+  glm::vec4 origin_material;  // the region's first cell corner; w: the system's material
+  glm::vec4 scale_slab;       // a cell's size; w: the atlas's slab height
+  glm::vec4 offset;           // the region's first texel
+  glm::vec4 dims;             // its cells per axis
+};
+std::vector<particle_region> particle_regions(const scene& s, const volume_atlas& a);
+// What a frame does for particle systems (both backends): whether it draws them (deferred techniques),
+// by the forward reference or from baked volumes; the atlas; the lights as the bake reads them (from
+// their light blocks, their index in s.lights in cos_inner.y for the shadow hook): the shadowed ones, each
+// baked in its own dispatch (in light order, which is also the order of the reference's shadow-map
+// layers), and the rest, baked together.
+struct particle_plan {
+  bool on = false, reference = false, baking = false;
+  shadow_mode shadows = shadow_mode::off;  // the maps the particle pass and the bake read: none without a shadowed light
+  volume_atlas atlas;
+  std::vector<volume_light> shadowed_lights, unshadowed_lights;
+};
+particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o);
+
+// The passes a frame of `s` runs, in the order both renderers run them (dstrans/frame/schedule.hpp): its
+// resources are "scene" (the frame's input), the G-buffers, light buffers, the shadow map, the k-buffer,
+// the light volumes' texels and atlas, the shadow maps' layers, and "frame" (the composed image), which
+// the post chain reads; the frame's output is the post chain's.
+frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o);
+
+// The volume mesh a light is drawn with: none (full screen) for directional lights (and for every light
+// with options::fullscreen_lights), a sphere or a cone otherwise. A volume mesh is drawn with its back
+// faces, depth clamped and no depth test: every pixel whose view ray meets the convex mesh in front of
+// the camera sees exactly one back face there, wherever the camera is (inside, outside, on the boundary),
+// and with the depth clamped neither the near nor the far plane clips it away. (The thesis draws front
+// faces when the camera is outside, which the near plane cuts off when it crosses the volume.)
+enum class volume { fullscreen, sphere, cone };
+volume volume_of(const light& l, const options& o);
+
+// The final image's target.
+inline target_desc final_target_desc(bool float_targets) {
+  return {float_targets ? format::rgba32f : format::rgba8, {"r", "g", "b", "a"}};
+}
+
+// Definitions.
+namespace frame_detail {
+// Cones wider than this are drawn as spheres: a cone's mesh grows without bound towards 90 degrees.
+inline constexpr float widest_cone = 60.0f;
+
+// A sphere around every object of the scene.
+struct bounds {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+};
+inline bounds scene_bounds(const scene& s) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const object& ob : s.objects)
+    for (const glm::vec3& p : ob.geometry.positions) {
+      const glm::vec3 w = glm::vec3(ob.transform * glm::vec4(p, 1.0f));
+      lo = glm::min(lo, w);
+      hi = glm::max(hi, w);
+    }
+  if (!(lo.x <= hi.x)) return {};
+  return {(lo + hi) * 0.5f, glm::length(hi - lo) * 0.5f};
+}
+
+// The near and far planes of a spot light's shadow map: where the scene's bounds begin and end seen from
+// the light, within its range. Derived from lengths of the scene alone, so that a scene scaled uniformly
+// gets the same window depths (a constant floor on the near plane made shadows depend on the scale).
+inline glm::vec2 shadow_planes(const bounds& b, const light& l) {
+  const float d = glm::length(b.centre - l.position);
+  const float far_plane = std::min(l.range, d + b.radius);
+  return {std::clamp(d - b.radius, far_plane * 1e-3f, far_plane * 0.5f), far_plane};
+}
+
+inline glm::mat4 spot_view(const light& l) {
+  const glm::vec3 up = std::fabs(l.direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  return glm::lookAtRH(l.position, l.position + l.direction, up);
+}
+
+// The shape that bounds a light's reach, whatever the camera.
+inline volume shape_of(const light& l) {
+  if (l.kind == light_kind::directional) return volume::fullscreen;
+  if (l.kind == light_kind::spot && l.outer_angle <= widest_cone) return volume::cone;
+  return volume::sphere;
+}
+
+}  // namespace frame_detail
+
+inline result<bool> fits_device(const options& o, int largest) {
+  const int wanted = std::max({o.width, o.height, o.shadow_size});
+  if (wanted > largest)
+    return failure{"a " + std::to_string(o.width) + "x" + std::to_string(o.height) + " frame with a " +
+                   std::to_string(o.shadow_size) + "^2 shadow map needs images " + std::to_string(wanted) +
+                   " texels a side; this device's largest is " + std::to_string(largest)};
+  return true;
+}
+
+inline volume volume_of(const light& l, const options& o) { return o.fullscreen_lights ? volume::fullscreen : frame_detail::shape_of(l); }
+
+inline basis particle_basis(const options& o) {
+  if (o.particles == options::particle_light::four_axes) return four_axes();
+  basis b = six_axes();
+  if (o.particles == options::particle_light::fourteen_axes)  // a user-supplied set: the cube's faces and corners
+    for (int i = 0; i < 8; ++i) b.axes.push_back(glm::normalize(glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1)));
+  return b;
+}
+
+inline volume_atlas particle_atlas(const scene& s, const options& o) {
+  std::vector<volume_grid> grids;
+  const int n = std::clamp(o.volume_cells, 1, 256);
+  for (const particle_system& ps : s.particles) {
+    const auto [lo, hi] = particle_bounds(ps);
+    grids.push_back(fit_grid(lo, hi, glm::ivec3(n)));
+  }
+  return pack_volumes(grids, int(particle_basis(o).axes.size()));
+}
+
+inline std::vector<particle_region> particle_regions(const scene& s, const volume_atlas& a) {
+  std::vector<particle_region> out;
+  for (std::size_t r = 0; r < a.regions.size() && r < s.particles.size(); ++r) {
+    const volume_grid& g = a.regions[r];
+    out.push_back({glm::vec4(glm::vec3(g.origin), float(s.particles[r].material)), glm::vec4(glm::vec3(g.scale), float(a.slab)),
+                   glm::vec4(glm::vec3(a.offsets[r]), 0.0f), glm::vec4(glm::vec3(g.dims), 0.0f)});
+  }
+  return out;
+}
+
+inline particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o) {
+  particle_plan out;
+  out.on = p.on.has(effect::light_volumes) && !p.forward;
+  out.reference = out.on && o.particles == options::particle_light::forward;
+  out.baking = out.on && !out.reference;
+  out.atlas = particle_atlas(s, o);
+  const std::vector<light_block> blocks = light_blocks(s);
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const light_block& b = blocks[i];
+    const volume_light v{glm::vec4(glm::vec3(b.position_range), b.direction_kind.w),
+                         glm::vec4(glm::vec3(b.direction_kind), b.position_range.w), b.colour_cos_outer,
+                         glm::vec4(b.cos_inner.x, float(i), 0.0f, 0.0f)};
+    (p.lookups[i] != shadow_mode::off ? out.shadowed_lights : out.unshadowed_lights).push_back(v);
+  }
+  out.shadows = out.shadowed_lights.empty() ? shadow_mode::off : p.shadows;
+  return out;
+}
+
+inline frame_plan plan_of(const scene& s, const options& o) {
+  frame_plan p{};
+  effects e = effects_of(scene_features(s));
+  if (o.refraction <= 0.0f) e = e.without(effect::refraction);
+  if (o.shadows != shadow_mode::transparent) e = e.without(effect::transparent_shadows);
+  if (o.shadows == shadow_mode::off) e = e.without(effect::shadows);
+  e.bits |= o.force.bits;  // forced code runs even where the options leave its effect nothing to do
+  p.on = completed(e);
+  p.pipeline = o.layout == gbuffer_layout::compact ? plan_pipeline<compact_gbuffer>(p.on) : plan_pipeline<thesis_gbuffer>(p.on);
+  p.shadows = !p.on.has(effect::shadows)                ? shadow_mode::off
+              : p.on.has(effect::transparent_shadows) ? shadow_mode::transparent
+                                                      : shadow_mode::opaque;
+  // A light whose cone reaches no glass looks its map up plainly, unless the transparent lookup is forced.
+  for (const light& l : s.lights)
+    p.lookups.push_back(!casts_shadows(l) || p.shadows == shadow_mode::off ? shadow_mode::off
+                        : p.shadows == shadow_mode::transparent &&
+                                (sees_transparency(s, l) || o.force.has(effect::transparent_shadows))
+                            ? shadow_mode::transparent
+                            : shadow_mode::opaque);
+  p.forward = is_forward(o.method);
+  p.forward_depth = o.method == technique::forward_depth;
+  p.peeling = o.method == technique::peeling;
+  p.layers = p.forward ? 0 : p.peeling ? 2 : 1;
+  // The scene's post-processing chain, on the deferred techniques (it reads the G-buffer): its passes and
+  // targets join the plan, each target the final image's format.
+  if (!p.forward) {
+    p.post = plan_post(s.post, o.method == technique::interlaced && p.on.has(effect::transparency));
+    const target_desc t = final_target_desc(o.float_targets);
+    for (const post_pass& pass : p.post.passes) {
+      std::vector<std::string> reads;
+      for (const std::string& in : pass.inputs)
+        if (in == "gbuffer")
+          for (int k = 0; k < 4; ++k) reads.push_back("gbuffer.RT" + std::to_string(k));
+        else reads.push_back(in == "frame" ? "output" : "post." + in);
+      p.pipeline.passes.push_back({"post " + pass.name, reads, {"post." + pass.output}, pass.switches});
+    }
+    for (const std::string& name : p.post.targets) {
+      p.pipeline.targets.push_back({"post." + name, info(t.fmt).name, info(t.fmt).bytes_per_pixel, false});
+      p.pipeline.bytes_per_pixel += info(t.fmt).bytes_per_pixel;
+    }
+  }
+  return p;
+}
+
+inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o) {
+  frame_schedule out;
+  auto add = [&](const std::string& timer, const std::string& label, pass_kind kind, int light,
+                 std::vector<std::string> reads, std::vector<std::string> writes) {
+    out.passes.push_back({timer, label, kind, light, std::move(reads), std::move(writes)});
+  };
+  const std::string gbuffer[2] = {"gbuffer", "gbuffer 2"}, light_buffer[2] = {"light buffer", "light buffer 2"};
+  for (int k = 0; k < p.layers; ++k)
+    add("gbuffer", k ? "gbuffer pass, second layer" : "gbuffer pass", pass_kind::geometry, -1,
+        k ? std::vector<std::string>{"scene", gbuffer[0]} : std::vector<std::string>{"scene"}, {gbuffer[k]});
+  if (p.forward) add("ambient", "forward ambient pass", pass_kind::geometry, -1, {"scene"}, {"lit"});
+  const particle_plan smoke = particle_plan_of(s, p, o);
+  if (smoke.baking && !smoke.unshadowed_lights.empty())
+    add("bake", "bake pass", pass_kind::dispatch, -1, {"scene"}, {"volume texels"});
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const int l = int(i);
+    const std::string n = std::to_string(i);
+    const bool shadowed = p.lookups[i] != shadow_mode::off;
+    std::vector<std::string> reads{"scene"};
+    if (shadowed) {
+      add("shadow", "shadow pass, light " + n, pass_kind::geometry, l, {"scene"}, {"shadow map"});
+      if (smoke.baking) add("bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume texels"});
+      if (smoke.reference) add("particles", "shadow map into its layer, light " + n, pass_kind::transfer, l, {"shadow map"}, {"shadow layers"});
+      reads.push_back("shadow map");
+    }
+    if (p.forward) {
+      add("light", "forward light pass, light " + n, pass_kind::geometry, l, reads, {"lit"});
+      continue;
+    }
+    const pass_kind kind = volume_of(s.lights[i], o) == volume::fullscreen ? pass_kind::fullscreen : pass_kind::light_volume;
+    for (int k = 0; k < p.layers; ++k) {
+      std::vector<std::string> layer_reads = reads;
+      layer_reads[0] = gbuffer[k];
+      add("light", "light pass, light " + n + (k ? ", second layer" : ""), kind, l, layer_reads, {light_buffer[k]});
+    }
+  }
+  if (smoke.baking) add("bake", "bake pass, into the atlas", pass_kind::transfer, -1, {"volume texels"}, {"volume atlas"});
+  if (p.forward) {
+    add("blend", "forward blend pass", pass_kind::fullscreen, -1, {"lit"}, {"frame"});
+  } else {
+    std::vector<std::string> reads{gbuffer[0]};
+    // Light buffers start cleared: a scene without lights composes its ambient term alone.
+    if (!s.lights.empty()) reads.push_back(light_buffer[0]);
+    if (p.peeling) {
+      reads.push_back(gbuffer[1]);
+      if (!s.lights.empty()) reads.push_back(light_buffer[1]);
+    }
+    add("compose", "compose pass", pass_kind::fullscreen, -1, reads, {"frame"});
+  }
+  if (p.on.has(effect::many_layers) && !p.forward) {
+    std::vector<std::string> reads{"scene"};
+    if (p.shadows != shadow_mode::off && hair_shadow_light(p) >= 0) reads.push_back("shadow map");
+    add("capture", "capture pass", pass_kind::geometry, -1, reads, {"kbuffer"});
+    add("resolve", "resolve pass", pass_kind::fullscreen, -1, {"kbuffer", "frame"}, {"frame"});
+  }
+  if (smoke.on)
+    add("particles", "particle pass", pass_kind::geometry, -1,
+        {gbuffer[0], smoke.baking ? "volume atlas" : smoke.shadowed_lights.empty() ? "scene" : "shadow layers", "frame"},
+        {"frame"});
+  for (const post_pass& pass : p.post.passes) {
+    std::vector<std::string> reads;
+    for (const std::string& in : pass.inputs) reads.push_back(in == "gbuffer" ? gbuffer[0] : in);
+    add("post " + pass.effect, "post " + pass.name, pass_kind::fullscreen, -1, reads, {pass.output});
+  }
+  return out;
+}
+
+inline int hair_shadow_light(const frame_plan& p) {
+  for (std::size_t i = p.lookups.size(); i-- > 0;)
+    if (p.lookups[i] != shadow_mode::off) return int(i);
+  return -1;
+}
+
+inline frame_block camera_frame(const scene& s, const options& o) { return camera_frame(s.view, s.ambient, o); }
+
+inline frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o) {
+  frame_block f{};
+  f.view = c.view();
+  f.view_proj = c.projection(float(o.width) / float(o.height)) * f.view;
+  f.inv_view_proj = glm::inverse(f.view_proj);
+  f.camera_position = glm::vec4(c.position, 1.0f);
+  f.ambient = glm::vec4(ambient, 0.0f);
+  f.size = {o.width, o.height, o.shadow_size, o.shadow_size};
+  f.params = {o.refraction, o.shadow_bias, -1.0f, float(o.kbuffer_k)};
+  return f;
+}
+
+inline frame_block light_frame(const scene& s, const light_block& l, const options& o) {
+  frame_block f = camera_frame(s, o);
+  f.view_proj = l.shadow_view_proj;
+  return f;
+}
+
+inline std::vector<material_block> material_blocks(const scene& s) {
+  std::vector<material_block> out;
+  for (const material& m : s.materials)
+    out.push_back({glm::vec4(m.diffuse, m.alpha), glm::vec4(m.spec_intensity, m.spec_power, m.refractive ? 1.0f : 0.0f, m.hair ? 1.0f : 0.0f)});
+  return out;
+}
+
+inline std::vector<light_block> light_blocks(const scene& s) {
+  std::vector<light_block> out;
+  const frame_detail::bounds b = frame_detail::scene_bounds(s);
+  for (const light& l : s.lights) {
+    const glm::vec2 planes = frame_detail::shadow_planes(b, l);
+    light_block lb{};
+    const float kind = l.kind == light_kind::directional ? 0.0f : l.kind == light_kind::point ? 1.0f : 2.0f;
+    lb.position_range = glm::vec4(l.position, l.range);
+    lb.direction_kind = glm::vec4(l.direction, kind);
+    lb.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
+    lb.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), l.shadows && l.kind == light_kind::spot ? 1.0f : 0.0f,
+                            planes.x, planes.y);
+    // The shadow map covers the outer cone; a 90-degree spot would need a 180-degree frustum, so
+    // shadow maps stop at 85 degrees and what lies outside them is lit unshadowed. A 0-degree spot lights
+    // only its axis, which a frustum of 1 degree holds (one of 0 degrees has an infinite projection).
+    const float half = std::clamp(l.outer_angle, 0.5f, 85.0f);
+    if (l.kind == light_kind::spot)
+      lb.shadow_view_proj = glm::perspectiveRH_ZO(glm::radians(2.0f * half), 1.0f, planes.x, planes.y) * frame_detail::spot_view(l);
+    switch (frame_detail::shape_of(l)) {
+      case volume::fullscreen: lb.volume = glm::mat4(1.0f); break;
+      case volume::sphere: lb.volume = glm::scale(glm::translate(glm::mat4(1.0f), l.position), glm::vec3(l.range)); break;
+      case volume::cone: {
+        // The unit cone opens along +Z; a half turn about Y points it down the view space -Z, which the
+        // inverse view turns to the light's direction (a rotation: the winding stays outward).
+        const float r = l.range * std::tan(glm::radians(l.outer_angle));
+        const glm::mat4 turn = glm::inverse(frame_detail::spot_view(l)) * glm::scale(glm::mat4(1.0f), glm::vec3(-1, 1, -1));
+        lb.volume = turn * glm::scale(glm::mat4(1.0f), glm::vec3(r, r, l.range));
+        break;
+      }
+    }
+    out.push_back(lb);
+  }
+  return out;
+}
+
+}  // namespace dstrans::render
