@@ -477,7 +477,7 @@ result<frame> render_gl(const scene& s, const options& o, const pass_shaders& sh
           glBindVertexArray(scene_vao);
           glDrawElements(GL_TRIANGLES, GLsizei(m.indices.size()), GL_UNSIGNED_INT, nullptr);
         });
-        if (shadow_picture.framebuffer && shadow_layer == 0)
+        if (shadow_picture.framebuffer && shadow_layer == 0 && n == 0)  // once: the lights do not move
           glCopyImageSubData(shadow_map.textures[1], GL_TEXTURE_2D, 0, 0, 0, 0, shadow_picture.textures[0], GL_TEXTURE_2D, 0,
                              0, 0, 0, o.shadow_size, o.shadow_size, 1);
         if (baking)

@@ -694,7 +694,7 @@ result<frame> render_vk(vk::device& dev, const scene& s, const options& o, const
         });
         // The first shadowed light's map is the one pictured (Figure 4.4 of the thesis shows one): its colour
         // is copied out before the next light's shadow pass draws over it.
-        if (mode == shadow_mode::transparent && shadow_layer == 0) {
+        if (mode == shadow_mode::transparent && shadow_layer == 0 && n == 0) {  // once: the lights do not move
           barrier(frame_cmd);
           relayout(frame_cmd, shadow_map.colors[1].handle, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
           VkBufferImageCopy copy{};
