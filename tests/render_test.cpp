@@ -14,11 +14,11 @@
 
 #include <dstrans/dstrans.hpp>
 #include <dstrans/light_volume.hpp>
-#include <render_gl.hpp>
+#include <run_gl.hpp>
 #include <render_vk.hpp>
 #include <dstrans/frame/plan.hpp>
 #include <leaks.hpp>
-#include <passes.hpp>
+#include <dstrans/frame/passes.hpp>
 #include <dstrans_spirv.hpp>
 
 #include "effect_scenes.hpp"
@@ -46,7 +46,7 @@ std::optional<frame> draw(backend b, const scene& s, const options& o) {
       WARN("skipped GL: " << ctx.error());
       return std::nullopt;
     }
-    auto f = render::render_gl(s, o, pass_shaders());
+    auto f = render::run_gl(s, o, pass_shaders());
     INFO(f.error());
     REQUIRE(f);
     const auto messages = (*ctx)->debug_messages();
@@ -233,6 +233,9 @@ std::vector<std::pair<std::string, GLint64>> gl_state() {
   ints("unpack buffer", GL_PIXEL_UNPACK_BUFFER_BINDING, 1);
   ints("uniform buffer", GL_UNIFORM_BUFFER_BINDING, 1);
   ints("storage buffer", GL_SHADER_STORAGE_BUFFER_BINDING, 1);
+  GLuint generic[4] = {};
+  glGetVertexAttribIuiv(3, GL_CURRENT_VERTEX_ATTRIB, generic);
+  for (int i = 0; i < 4; ++i) out.push_back({"vertex attribute 3[" + std::to_string(i) + "]", GLint64(generic[i])});
   for (GLenum cap : {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_SCISSOR_TEST, GL_DEPTH_CLAMP, GL_STENCIL_TEST,
                      GL_FRAMEBUFFER_SRGB})
     out.push_back({"enabled " + std::to_string(cap), glIsEnabled(cap)});
@@ -286,6 +289,7 @@ struct engine_gl_state {
     glCreateVertexArrays(1, &vertex_array);
     glCreateFramebuffers(1, &framebuffer);
     glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, textures[0], 0);
+    glVertexAttribI4ui(3, 7u, 8u, 9u, 10u);
     GLint units = 0, uniform_blocks = 0, storage_blocks = 0, image_units = 0, align = 256;
     glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
     glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &uniform_blocks);
@@ -365,7 +369,7 @@ TEST_CASE("GL: a frame leaves the engine's GL state as it found it", "[render][g
     if (c.everything) o.force = effects::all();
     if (c.particle_reference) o.particles = options::particle_light::forward;
     const auto before = gl_state();
-    auto f = render::render_gl(s, o, pass_shaders());
+    auto f = render::run_gl(s, o, pass_shaders());
     INFO(f.error());
     REQUIRE(f);
     const auto after = gl_state();

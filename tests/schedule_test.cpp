@@ -87,3 +87,39 @@ TEST_CASE("a schedule has no pass for an effect the frame does not draw", "[sche
   CHECK(count(forward, "compose") == 0);
   CHECK(count(forward, "blend") == 1);
 }
+
+TEST_CASE("a schedule states each pass's fixed-function state, clears and geometry", "[schedule]") {
+  for (const char* file : {"glass_room.json", "hair.json", "smoke.json", "glass_room_17.json"}) {
+    const scene s = example(file);
+    for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward}) {
+      render::options o;
+      o.method = t;
+      const render::frame_plan p = render::plan_of(s, o);
+      const frame_schedule sched = render::schedule_of(s, p, o);
+      INFO(file << ", " << render::technique_name(t));
+      for (const scheduled_pass& pass : sched.passes) {
+        INFO(pass.label);
+        const bool fills = pass.step == pass_step::gbuffer || pass.step == pass_step::ambient || pass.step == pass_step::shadow;
+        CHECK((pass.state.depth == depth_test::less && pass.state.depth_write) == fills);
+        CHECK(pass.clear_depth == fills);
+        CHECK((pass.draws != geometry_set::none) == (pass.kind == pass_kind::geometry && pass.step != pass_step::particles));
+        if (pass.step == pass_step::gbuffer) CHECK(pass.clears == render::gbuffer_clears(o.layout));
+        if (pass.step == pass_step::shadow) CHECK(pass.draws == geometry_set::everything);
+        if (pass.step == pass_step::capture) CHECK(pass.draws == geometry_set::hair);
+        if (pass.step == pass_step::gbuffer || pass.step == pass_step::ambient || pass.step == pass_step::forward_light)
+          CHECK(pass.draws == geometry_set::surfaces);
+        if (pass.step == pass_step::light || pass.step == pass_step::forward_light) CHECK(pass.state.blend == blending::add);
+        if (pass.step == pass_step::resolve || pass.step == pass_step::particles) CHECK(pass.state.blend == blending::over);
+        // A light volume's back faces, depth clamped; a full-screen light neither.
+        CHECK((pass.state.cull == culling::front) == (pass.kind == pass_kind::light_volume));
+        CHECK(pass.state.depth_clamp == (pass.kind == pass_kind::light_volume));
+        if (pass.step == pass_step::compose || pass.step == pass_step::blend || pass.step == pass_step::post)
+          CHECK((pass.state.blend == blending::off && pass.state.depth == depth_test::off));
+      }
+      std::vector<std::string> cleared{"light buffer", "light buffer 2"};
+      cleared.resize(std::size_t(p.layers));
+      if (render::particle_plan_of(s, p, o).baking) cleared.push_back("volume texels");
+      CHECK(sched.cleared == cleared);
+    }
+  }
+}

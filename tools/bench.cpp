@@ -20,9 +20,9 @@
 #include "gpu.hpp"
 #include "output_dir.hpp"
 #include "leaks.hpp"
-#include "passes.hpp"
+#include <dstrans/frame/passes.hpp>
 #ifdef DSTRANS_HAVE_GL
-#include "render_gl.hpp"
+#include "run_gl.hpp"
 #endif
 #ifdef DSTRANS_HAVE_VK
 #include "render_vk.hpp"
@@ -504,7 +504,7 @@ int bench(std::vector<std::string> args) {
       auto run = [&](render::technique t) -> result<render::frame> {
         const render::options o = options_of(t);
 #ifdef DSTRANS_HAVE_GL
-        if ((*g)->gl) return render::render_gl(s, o, pass_shaders());
+        if ((*g)->gl) return render::run_gl(s, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
         if ((*g)->vk) return render::render_vk(*(*g)->vk, s, o, pass_shaders());
@@ -601,7 +601,7 @@ int bench(std::vector<std::string> args) {
       const gpu& on = b == backend ? **g : **other;
       auto draw = [&](const scene& s, const render::options& o) -> result<render::frame> {
 #ifdef DSTRANS_HAVE_GL
-        if (on.gl) return render::render_gl(s, o, pass_shaders());
+        if (on.gl) return render::run_gl(s, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
         if (on.vk) return render::render_vk(*on.vk, s, o, pass_shaders());

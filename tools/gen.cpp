@@ -10,7 +10,7 @@
 
 #include "cli.hpp"
 #include "output_dir.hpp"
-#include "passes.hpp"
+#include <dstrans/frame/passes.hpp>
 #include "scene_json.hpp"
 
 namespace dstrans::cli {

@@ -5,7 +5,7 @@
 #include <dstrans/refraction.hpp>
 #include <dstrans/surface.hpp>
 
-#include "passes.hpp"
+#include <dstrans/frame/passes.hpp>
 
 namespace dstrans::render {
 

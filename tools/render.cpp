@@ -7,9 +7,9 @@
 
 #include "cli.hpp"
 #include "gpu.hpp"
-#include "passes.hpp"
+#include <dstrans/frame/passes.hpp>
 #ifdef DSTRANS_HAVE_GL
-#include "render_gl.hpp"
+#include "run_gl.hpp"
 #endif
 #ifdef DSTRANS_HAVE_VK
 #include "render_vk.hpp"
@@ -146,7 +146,7 @@ int render(std::vector<std::string> args) {
     }
     result<render::frame> f = failure{"no backend"};
 #ifdef DSTRANS_HAVE_GL
-    if ((*g)->gl) f = render::render_gl(*s, o, pass_shaders());
+    if ((*g)->gl) f = render::run_gl(*s, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
     if ((*g)->vk) f = render::render_vk(*(*g)->vk, *s, o, pass_shaders());

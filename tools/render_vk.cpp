@@ -9,7 +9,7 @@
 
 #include <dstrans/particles.hpp>
 
-#include "passes.hpp"
+#include <dstrans/frame/passes.hpp>
 
 namespace dstrans::render {
 

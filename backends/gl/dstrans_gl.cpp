@@ -248,6 +248,7 @@ state_guard::state_guard(const std::vector<GLuint>& storage_blocks) {
   glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack_buffer_);
   glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniform_buffer_);
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_buffer_);
+  glGetVertexAttribIuiv(3, GL_CURRENT_VERTEX_ATTRIB, light_index_);
   auto save_buffer = [&](GLenum target, GLenum binding, GLenum start, GLenum size, GLuint index) {
     buffer_range r{target, index, 0, 0, 0};
     glGetIntegeri_v(binding, index, &r.name);
@@ -310,6 +311,7 @@ state_guard::~state_guard() {
   glCullFace(GLenum(cull_face_));
   glFrontFace(GLenum(front_face_));
   glBindVertexArray(GLuint(vertex_array_));
+  glVertexAttribI4uiv(3, light_index_);
   glPixelStorei(GL_PACK_ALIGNMENT, pack_alignment_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, unpack_alignment_);
   for (const texture_unit& u : textures_) {

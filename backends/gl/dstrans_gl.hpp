@@ -111,7 +111,7 @@ class debug_group {
 // Saves the GL state dstrans's passes change and restores it when destroyed, so dstrans can run inside
 // an engine's frame: program, framebuffers, viewport, clip control, depth (test, write mask, function,
 // clamp), blend (enable, functions, equations), cull (enable, face, winding), scissor test, vertex array,
-// pixel pack and unpack alignment and buffers, the active texture unit, and every binding of the slot
+// the generic value of vertex attribute 3 (as unsigned integers: the frame's light index), pixel pack and unpack alignment and buffers, the active texture unit, and every binding of the slot
 // table (dstrans/frame/slots.hpp): the 2D, 3D and 2D-array textures of each texture slot's units, each
 // image slot's image unit, each block slot's buffer range, and the generic uniform and storage buffer
 // bindings that binding a block changes. `storage_blocks` names further storage-buffer bindings the
@@ -142,6 +142,7 @@ class state_guard {
       blend_dst_rgb_, blend_src_a_, blend_dst_a_, blend_eq_rgb_, blend_eq_a_, cull_face_, front_face_,
       vertex_array_, active_texture_, pack_alignment_, unpack_alignment_, pack_buffer_, unpack_buffer_,
       uniform_buffer_, storage_buffer_;
+  GLuint light_index_[4];
   GLboolean depth_test_, depth_mask_, blend_, cull_, scissor_, depth_clamp_;
   std::vector<texture_unit> textures_;
   std::vector<image_unit> images_;

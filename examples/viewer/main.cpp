@@ -1,5 +1,5 @@
-// The dstrans viewer: any scene file in a GLFW window, drawn by the reference OpenGL renderer
-// (tools/render_gl), with an orbit camera, keys for every effect and technique, and the GPU time of each
+// The dstrans viewer: any scene file in a GLFW window, drawn by the library's OpenGL frame
+// (dstrans::gl::renderer), with an orbit camera, keys for every effect and technique, and the GPU time of each
 // pass in the window title.
 //
 //   viewer examples/scenes/pane.json                 # until the window closes
@@ -11,10 +11,12 @@
 // depth); S shadows (off, opaque, transparent); R refraction on/off; T transmittance (thesis, physical);
 // F the full pipeline (every effect planned, whether the scene calls for it or not); L reloads the pass
 // shaders (from --shaders DIR; the embedded ones otherwise); Esc quits.
-// A key that changes the plan rebuilds the renderer, reading the shaders again; orbiting only moves the camera.
+// One renderer draws every frame; a key that changes the plan makes a new one (reading the shaders again),
+// and orbiting only moves the camera.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,7 +27,7 @@
 
 #include "../example_io.hpp"
 
-#include <render_gl.hpp>
+#include <dstrans_gl_frame.hpp>
 #include <scene_json.hpp>
 
 namespace {
@@ -183,16 +185,9 @@ int main(int argc, char** argv) {
   int drawn = 0;
   bool failed = false;  // a window picture that could not be written
   std::string title;
-  render::frame_hooks hooks;
-  hooks.before = [&](int frame, camera& view) {
-    glfwPollEvents();
-    st.eye.place(view);
-    if (frame > 0 && st.now.changed) return false;  // a new plan: the renderer is rebuilt
-    return !glfwWindowShouldClose(window) && (frames == 0 || drawn < frames);
-  };
-  hooks.after = [&](unsigned framebuffer, const std::map<std::string, double>& pass_ms) {
-    // The final image's row 0 is its top; the window's is its bottom.
-    glBlitNamedFramebuffer(framebuffer, 0, 0, 0, width, height, 0, height, width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  // The final image's row 0 is its top; the window's is its bottom.
+  auto show = [&](const gl::renderer& r) {
+    glBlitNamedFramebuffer(r.output().framebuffer, 0, 0, 0, width, height, 0, height, width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     if (!out.empty() && drawn + 1 == frames) {
       // What the window shows, read back before the swap.
       std::vector<unsigned char> pixels(std::size_t(width) * std::size_t(height) * 4);
@@ -206,10 +201,9 @@ int main(int argc, char** argv) {
       }
     }
     glfwSwapBuffers(window);
-    double total = 0.0;
+    const gl::frame_times times = r.times();
     std::string passes;
-    for (const auto& [name, ms] : pass_ms) {
-      total += ms;
+    for (const auto& [name, ms] : times.pass_ms) {
       char part[64];
       std::snprintf(part, sizeof part, "%s%s %.1f", passes.empty() ? "" : ", ", name.c_str(), ms);
       passes += part;
@@ -218,21 +212,32 @@ int main(int argc, char** argv) {
     char head[256];
     std::snprintf(head, sizeof head, "dstrans viewer: %s, shadows %s, refraction %s, %s%s: %.1f ms (", render::technique_name(o.method),
                   render::shadow_name(o.shadows), o.refraction > 0.0f ? "on" : "off",
-                  o.physical_transmittance ? "physical" : "thesis", o.force == effects{} ? "" : ", full pipeline", total);
+                  o.physical_transmittance ? "physical" : "thesis", o.force == effects{} ? "" : ", full pipeline", times.frame_ms);
     title = head + passes + ")";
     glfwSetWindowTitle(window, title.c_str());
     ++drawn;
   };
-  const pass_shaders shaders = shader_dir.empty() ? pass_shaders() : pass_shaders(shader_dir);
+  const gl::scene_geometry meshes(*s);
+  std::unique_ptr<gl::renderer> r;
+  camera view = s->view;
   while (!glfwWindowShouldClose(window) && (frames == 0 || drawn < frames)) {
-    st.now.changed = false;
-    const auto f = render::render_gl(*s, st.now.o, shaders, &hooks);
-    if (!f) {
-      std::fprintf(stderr, "viewer: %s\n", f.error().c_str());
-      glfwDestroyWindow(window);
-      glfwTerminate();
-      return 1;
+    if (!r || st.now.changed) {
+      st.now.changed = false;
+      r.reset();
+      const pass_shaders shaders = shader_dir.empty() ? pass_shaders() : pass_shaders(shader_dir);
+      auto made = gl::renderer::create(*s, st.now.o, shaders);
+      if (!made) {
+        std::fprintf(stderr, "viewer: %s\n", made.error().c_str());
+        glfwDestroyWindow(window);
+        glfwTerminate();
+        return 1;
+      }
+      r = std::move(*made);
     }
+    st.eye.place(view);
+    r->render(view, [&](const scheduled_pass& pass) { meshes(pass); });
+    show(*r);
+    glfwPollEvents();
   }
   std::printf("%s\n", title.c_str());
   glfwDestroyWindow(window);

@@ -15,6 +15,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../gbuffer.hpp"
 #include "../interlace.hpp"
 #include "../layout.hpp"
 #include "../light_mesh.hpp"
@@ -206,6 +207,11 @@ frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o
 enum class volume { fullscreen, sphere, cone };
 volume volume_of(const light& l, const options& o);
 
+// The G-buffer layout's targets, and what a frame clears them to: empty pixels are opaque black at the
+// far plane.
+std::vector<target_desc> gbuffer_targets(gbuffer_layout l);
+std::vector<glm::vec4> gbuffer_clears(gbuffer_layout l);
+
 // The final image's target.
 inline target_desc final_target_desc(bool float_targets) {
   return {float_targets ? format::rgba32f : format::rgba8, {"r", "g", "b", "a"}};
@@ -357,45 +363,95 @@ inline frame_plan plan_of(const scene& s, const options& o) {
   return p;
 }
 
+inline std::vector<target_desc> gbuffer_targets(gbuffer_layout l) {
+  return l == gbuffer_layout::thesis ? describe<thesis_gbuffer>() : describe<compact_gbuffer>();
+}
+
+inline std::vector<glm::vec4> gbuffer_clears(gbuffer_layout l) {
+  std::vector<glm::vec4> out;
+  for (const target_desc& t : gbuffer_targets(l))
+    out.push_back(out.empty() ? glm::vec4(0, 0, 0, 1) : t.channels[0] == "depth" ? glm::vec4(1.0f) : glm::vec4(0.0f));
+  return out;
+}
+
 inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o) {
   frame_schedule out;
-  auto add = [&](const std::string& timer, const std::string& label, pass_kind kind, int light,
-                 std::vector<std::string> reads, std::vector<std::string> writes) {
-    out.passes.push_back({timer, label, kind, light, std::move(reads), std::move(writes)});
+  auto add = [&](pass_step step, const std::string& timer, const std::string& label, pass_kind kind, int light,
+                 std::vector<std::string> reads, std::vector<std::string> writes) -> scheduled_pass& {
+    scheduled_pass pass(timer, label, kind, light, std::move(reads), std::move(writes));
+    pass.step = step;
+    out.passes.push_back(std::move(pass));
+    return out.passes.back();
   };
+  pass_state depth_tested;  // the geometry passes that fill targets: the nearest fragment wins
+  depth_tested.depth = depth_test::less;
+  depth_tested.depth_write = true;
+  const glm::vec4 zero(0.0f), far_plane(1.0f), opaque_black(0.0f, 0.0f, 0.0f, 1.0f);
   const std::string gbuffer[2] = {"gbuffer", "gbuffer 2"}, light_buffer[2] = {"light buffer", "light buffer 2"};
-  for (int k = 0; k < p.layers; ++k)
-    add("gbuffer", k ? "gbuffer pass, second layer" : "gbuffer pass", pass_kind::geometry, -1,
-        k ? std::vector<std::string>{"scene", gbuffer[0]} : std::vector<std::string>{"scene"}, {gbuffer[k]});
-  if (p.forward) add("ambient", "forward ambient pass", pass_kind::geometry, -1, {"scene"}, {"lit"});
+  for (int k = 0; k < p.layers; ++k) {
+    scheduled_pass& g = add(pass_step::gbuffer, "gbuffer", k ? "gbuffer pass, second layer" : "gbuffer pass", pass_kind::geometry, -1,
+                            k ? std::vector<std::string>{"scene", gbuffer[0]} : std::vector<std::string>{"scene"}, {gbuffer[k]});
+    g.index = k;
+    g.state = depth_tested;
+    g.draws = geometry_set::surfaces;
+    g.clears = gbuffer_clears(o.layout);
+    g.clear_depth = true;
+    out.cleared.push_back(light_buffer[k]);
+  }
+  if (p.forward) {
+    scheduled_pass& a = add(pass_step::ambient, "ambient", "forward ambient pass", pass_kind::geometry, -1, {"scene"}, {"lit"});
+    a.state = depth_tested;
+    a.draws = geometry_set::surfaces;
+    a.clears = {opaque_black, zero};
+    if (p.forward_depth) a.clears.push_back(far_plane);
+    a.clear_depth = true;
+  }
   const particle_plan smoke = particle_plan_of(s, p, o);
+  if (smoke.baking) out.cleared.push_back("volume texels");
   if (smoke.baking && !smoke.unshadowed_lights.empty())
-    add("bake", "bake pass", pass_kind::dispatch, -1, {"scene"}, {"volume texels"});
+    add(pass_step::bake, "bake", "bake pass", pass_kind::dispatch, -1, {"scene"}, {"volume texels"});
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const int l = int(i);
     const std::string n = std::to_string(i);
     const bool shadowed = p.lookups[i] != shadow_mode::off;
     std::vector<std::string> reads{"scene"};
     if (shadowed) {
-      add("shadow", "shadow pass, light " + n, pass_kind::geometry, l, {"scene"}, {"shadow map"});
-      if (smoke.baking) add("bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume texels"});
-      if (smoke.reference) add("particles", "shadow map into its layer, light " + n, pass_kind::transfer, l, {"shadow map"}, {"shadow layers"});
+      scheduled_pass& sh = add(pass_step::shadow, "shadow", "shadow pass, light " + n, pass_kind::geometry, l, {"scene"}, {"shadow map"});
+      sh.state = depth_tested;
+      sh.draws = geometry_set::everything;
+      sh.clears = p.shadows == shadow_mode::transparent ? std::vector<glm::vec4>{far_plane, far_plane} : std::vector<glm::vec4>{far_plane};
+      sh.clear_depth = true;
+      if (smoke.baking)
+        add(pass_step::bake_light, "bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume texels"});
+      if (smoke.reference)
+        add(pass_step::shadow_layer, "particles", "shadow map into its layer, light " + n, pass_kind::transfer, l, {"shadow map"},
+            {"shadow layers"});
       reads.push_back("shadow map");
     }
     if (p.forward) {
-      add("light", "forward light pass, light " + n, pass_kind::geometry, l, reads, {"lit"});
+      scheduled_pass& f = add(pass_step::forward_light, "light", "forward light pass, light " + n, pass_kind::geometry, l, reads, {"lit"});
+      f.state.depth = depth_test::less_equal;
+      f.state.blend = blending::add;
+      f.draws = geometry_set::surfaces;
       continue;
     }
-    const pass_kind kind = volume_of(s.lights[i], o) == volume::fullscreen ? pass_kind::fullscreen : pass_kind::light_volume;
+    const bool mesh = volume_of(s.lights[i], o) != volume::fullscreen;
     for (int k = 0; k < p.layers; ++k) {
       std::vector<std::string> layer_reads = reads;
       layer_reads[0] = gbuffer[k];
-      add("light", "light pass, light " + n + (k ? ", second layer" : ""), kind, l, layer_reads, {light_buffer[k]});
+      scheduled_pass& lp = add(pass_step::light, "light", "light pass, light " + n + (k ? ", second layer" : ""),
+                               mesh ? pass_kind::light_volume : pass_kind::fullscreen, l, layer_reads, {light_buffer[k]});
+      lp.index = k;
+      lp.state.blend = blending::add;
+      if (mesh) {
+        lp.state.cull = culling::front;
+        lp.state.depth_clamp = true;
+      }
     }
   }
-  if (smoke.baking) add("bake", "bake pass, into the atlas", pass_kind::transfer, -1, {"volume texels"}, {"volume atlas"});
+  if (smoke.baking) add(pass_step::atlas, "bake", "bake pass, into the atlas", pass_kind::transfer, -1, {"volume texels"}, {"volume atlas"});
   if (p.forward) {
-    add("blend", "forward blend pass", pass_kind::fullscreen, -1, {"lit"}, {"frame"});
+    add(pass_step::blend, "blend", "forward blend pass", pass_kind::fullscreen, -1, {"lit"}, {"frame"});
   } else {
     std::vector<std::string> reads{gbuffer[0]};
     // Light buffers start cleared: a scene without lights composes its ambient term alone.
@@ -404,22 +460,28 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
       reads.push_back(gbuffer[1]);
       if (!s.lights.empty()) reads.push_back(light_buffer[1]);
     }
-    add("compose", "compose pass", pass_kind::fullscreen, -1, reads, {"frame"});
+    add(pass_step::compose, "compose", "compose pass", pass_kind::fullscreen, -1, reads, {"frame"});
   }
   if (p.on.has(effect::many_layers) && !p.forward) {
     std::vector<std::string> reads{"scene"};
     if (p.shadows != shadow_mode::off && hair_shadow_light(p) >= 0) reads.push_back("shadow map");
-    add("capture", "capture pass", pass_kind::geometry, -1, reads, {"kbuffer"});
-    add("resolve", "resolve pass", pass_kind::fullscreen, -1, {"kbuffer", "frame"}, {"frame"});
+    // The capture also empties the lists (heads and node count) before it fills them.
+    scheduled_pass& c = add(pass_step::capture, "capture", "capture pass", pass_kind::geometry, -1, reads, {"kbuffer"});
+    c.state.blend = blending::add;
+    c.draws = geometry_set::hair;
+    c.clears = {zero, zero};
+    add(pass_step::resolve, "resolve", "resolve pass", pass_kind::fullscreen, -1, {"kbuffer", "frame"}, {"frame"}).state.blend =
+        blending::over;
   }
   if (smoke.on)
-    add("particles", "particle pass", pass_kind::geometry, -1,
-        {gbuffer[0], smoke.baking ? "volume atlas" : smoke.shadowed_lights.empty() ? "scene" : "shadow layers", "frame"},
-        {"frame"});
-  for (const post_pass& pass : p.post.passes) {
+    add(pass_step::particles, "particles", "particle pass", pass_kind::geometry, -1,
+        {gbuffer[0], smoke.baking ? "volume atlas" : smoke.shadowed_lights.empty() ? "scene" : "shadow layers", "frame"}, {"frame"})
+        .state.blend = blending::over;
+  for (std::size_t k = 0; k < p.post.passes.size(); ++k) {
+    const post_pass& pass = p.post.passes[k];
     std::vector<std::string> reads;
     for (const std::string& in : pass.inputs) reads.push_back(in == "gbuffer" ? gbuffer[0] : in);
-    add("post " + pass.effect, "post " + pass.name, pass_kind::fullscreen, -1, reads, {pass.output});
+    add(pass_step::post, "post " + pass.effect, "post " + pass.name, pass_kind::fullscreen, -1, reads, {pass.output}).index = int(k);
   }
   return out;
 }

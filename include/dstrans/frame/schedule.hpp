@@ -1,6 +1,7 @@
-// A frame as the passes it runs, in order: what kind each is, which light it serves, what it reads and
-// what it writes. Per-light passes are entries of the list, and a pass exists only for an effect the
-// frame draws; the renderers run the list (a test compares what they ran with it).
+// A frame as the passes it runs, in order: which step of the technique each is, which light it serves, its
+// fixed-function state and clears, what the engine draws in it, what it reads and what it writes.
+// Per-light passes are entries of the list, and a pass exists only for an effect the frame draws; the
+// executors walk the list (a test compares what they ran with it).
 //
 //   dstrans::frame_schedule s;
 //   s.passes.push_back({"gbuffer", "gbuffer pass", dstrans::pass_kind::geometry, -1, {"scene"}, {"gbuffer"}});
@@ -9,7 +10,10 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "../result.hpp"
 
@@ -30,16 +34,56 @@ inline const char* pass_kind_name(pass_kind k) {
   return "?";
 }
 
+// Which step of the technique a pass is, which decides its program and bindings: the G-buffer, forward
+// rendering's ambient pass, a light's shadow map, a light into the light buffer or (forward) into the lit
+// colour, the light volumes' bake of the unshadowed lights or of one shadowed light, a shadow map copied
+// into its layer, the baked texels into the atlas, the compose or forward blend, the k-buffer's capture
+// and resolve, the particles, a post-processing pass.
+enum class pass_step {
+  gbuffer, ambient, shadow, light, forward_light, bake, bake_light, shadow_layer, atlas, compose, blend, capture,
+  resolve, particles, post
+};
+
+// A draw's fixed-function state. Blending `add` sums (ONE, ONE); `over` puts a premultiplied colour over
+// what is there, and multiplies alpha, which holds what the frame behind keeps (colour ONE, SRC_ALPHA;
+// alpha ZERO, ONE). Culling `front` draws a light volume's back faces.
+enum class depth_test { off, less, less_equal };
+enum class blending { off, add, over };
+enum class culling { off, front };
+struct pass_state {
+  depth_test depth = depth_test::off;
+  bool depth_write = false, depth_clamp = false;
+  blending blend = blending::off;
+  culling cull = culling::off;
+};
+
+// What the engine draws in a geometry pass: every surface but hair, the hair, or both; the particles' quads
+// and the lights' meshes are the executor's own.
+enum class geometry_set { none, surfaces, hair, everything };
+
 struct scheduled_pass {
+  scheduled_pass() = default;
+  scheduled_pass(std::string timer_name, std::string label_text, pass_kind k, int light_index, std::vector<std::string> read,
+                 std::vector<std::string> written)
+      : timer(std::move(timer_name)), label(std::move(label_text)), kind(k), light(light_index), reads(std::move(read)),
+        writes(std::move(written)) {}
   std::string timer;  // what its time is reported as ("gbuffer", "light", ...: a frame's pass_ms)
   std::string label;  // its debug label ("light pass, light 2, second layer")
-  pass_kind kind;
+  pass_kind kind = pass_kind::geometry;
   int light = -1;     // the light it serves; -1: none
   std::vector<std::string> reads, writes;  // resources by name ("gbuffer", "shadow map", "final", ...)
+  pass_step step = pass_step::compose;
+  int index = 0;      // the G-buffer layer it serves (peeling's second: 1), or a post pass's place in the chain
+  pass_state state;
+  geometry_set draws = geometry_set::none;
+  // Before it draws: its colour attachments cleared to these (none: kept), its depth to the far plane.
+  std::vector<glm::vec4> clears;
+  bool clear_depth = false;
 };
 
 struct frame_schedule {
   std::vector<scheduled_pass> passes;
+  std::vector<std::string> cleared;  // resources cleared to zero as the frame begins, outside every pass
 };
 
 // Whether every pass reads only what an earlier pass wrote or the frame is given (`inputs`), and everything

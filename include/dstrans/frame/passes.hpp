@@ -1,0 +1,422 @@
+// The GLSL of each pass of the frame: generated layout code, the interlace predicate, and the pass shaders
+// (dstrans/pass_shaders.hpp), which bring the shared formulas they call. The backends compile these; an
+// engine that runs its own passes may take any one of them.
+//
+//   const dstrans::pass_shaders shaders;                 // embedded
+//   auto gbuffer = dstrans::render::gbuffer_pass(shaders, dstrans::render::layer::interlaced, plan.on, options);
+//   if (gbuffer) compile(gbuffer->vertex.text(), gbuffer->fragment.text());
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "../fullscreen.hpp"
+#include "../gbuffer.hpp"
+#include "../glsl.hpp"
+#include "../pass_shaders.hpp"
+#include "../result.hpp"
+#include "plan.hpp"
+#include "slots.hpp"
+
+namespace dstrans::render {
+
+// Table 3.2's fields in RGBA32F, for options::float_targets.
+using float_light_buffer = layout<light_sample, target<format::rgba32f, field::light, field::specular>>;
+// The light buffer's targets, and its layout's GLSL, for the options' precision.
+std::vector<target_desc> light_targets(bool float_targets);
+void add_light_layout(glsl::source& src, const std::string& name, bool float_targets, const glsl::layout_options& o);
+
+// Table 3.3 for transparent shadows; a plain depth map for opaque ones.
+using opaque_shadow_map = layout<surface, target<format::r32f, field::depth>>;
+
+
+// Which G-buffer a G-buffer pass writes.
+enum class layer { interlaced, first, second };
+
+// A pass's GLSL so far: the slot table (dstrans/frame/slots.hpp), which the pass shaders' bindings name.
+glsl::source pass_source();
+struct pass_sources {
+  glsl::source vertex = pass_source(), fragment = pass_source();
+};
+
+// The interlace predicate `p` (dst_interlace_keep, dst_interlace_partner) into `src`.
+void add_predicate(glsl::source& src, predicate p);
+// The G-buffer layout `l`'s GLSL under `name` (its targets: render::gbuffer_targets); a read side of the
+// compact layout takes depth from the depth attachment at the binding Table 3.1's depth target would have
+// (first_binding + 3).
+void add_gbuffer_layout(glsl::source& src, gbuffer_layout l, const std::string& name, glsl::layout_options o);
+constexpr int gbuffer_depth_slot = 3;  // the depth attachment's binding after a compact G-buffer's first
+
+// `shaders` are the pass shaders: the embedded ones, or a folder's.
+result<pass_sources> gbuffer_pass(const pass_shaders& shaders, layer which, effects on, const options& o);
+result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode mode, effects on);
+result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode mode, bool volume, const options& o);
+result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const options& o);
+
+// The k-buffer (many_layers): hair into per-pixel lists (or the tail targets), then the resolve over the
+// frame with the options' k and variant. `shadows` is the shadow map's kind.
+result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o);
+result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o);
+// Its node pool's size and tail targets.
+std::uint32_t kbuffer_capacity(const options& o);
+// The bytes of a frame's render targets, shadow maps and k-buffer lists, for the resource budget.
+std::size_t frame_bytes(const frame_plan& p, const options& o);
+std::vector<target_desc> kbuffer_tail_targets();
+
+// Light volumes (light_volumes, TECHNIQUES.md S2). The bake of options' basis: all unshadowed lights
+// (`shadows` off), or one shadowed spot light reading the shadow map of kind `shadows` through the
+// bake's shadow hook. The particle pass: lit from the atlas, or (options::particle_light::forward) by
+// every light, reading the shadow maps' copies in layers.
+result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o);
+result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o);
+
+// A pass of the post-processing chain (post.hpp): the full-screen triangle and the pass's shader, its
+// texture inputs at slot::post_input and the next, its parameters' block at slot::post_params, the
+// G-buffer at its slot if the pass reads "gbuffer".
+result<pass_sources> post_pass_sources(const pass_shaders& shaders, const post_pass& pass, const options& o);
+
+// Every shader variant the deferred pipeline of `plan` compiles for scene `s`, named as its passes and
+// programs are labelled ("gbuffer pass", "light pass transparent shadows volume", ...).
+struct named_pass {
+  std::string name;
+  pass_sources sources;
+};
+result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shaders, const scene& s, const frame_plan& plan,
+                                                const options& o);
+
+// The forward renderer's passes: ambient (colour, normal, depth), one light, and the blend.
+enum class forward_stage { ambient, light, blend };
+result<pass_sources> forward_pass(const pass_shaders& shaders, forward_stage stage, bool with_depth, shadow_mode mode,
+                                  bool physical_transmittance = false);
+// Its targets: lit colour and alpha (RGBA32F with float targets), the normal, and with depth the window depth.
+std::vector<target_desc> forward_targets(bool with_depth, bool float_targets = false);
+
+// Definitions.
+namespace pass_detail {
+
+
+using I = interlace::rows;  // the shadow maps' predicate
+
+// `src` with the frame interface (and the fragment helpers, for a fragment shader) and then `files`
+// appended, the pass shader last, their #ifdef DST_ sections resolved on `switches`; a failure if a
+// file is missing.
+inline result<bool> finish(glsl::source& src, const pass_shaders& shaders, std::vector<std::string> files,
+                    const std::vector<std::string>& switches = {}) {
+  if (files.back().find(".frag.") != std::string::npos) files.insert(files.begin(), "fragment.glsl");
+  files.insert(files.begin(), "frame.glsl");
+  for (const std::string& f : files)
+    if (auto ok = shaders.add_to(src, f, switches); !ok) return ok;
+  return true;
+}
+
+inline void add_shadow_layout(glsl::source& src, shadow_mode mode, glsl::side side) {
+  glsl::layout_options o;
+  o.sides = side;
+  o.first_binding = binding(slot::shadow_map);
+  if (mode == shadow_mode::transparent) glsl::add_layout<thesis_shadow_map>(src, "shadow", o);
+  else glsl::add_layout<opaque_shadow_map>(src, "shadow", o);
+}
+
+// The switches of a shadow lookup (or of a shadow map's pass).
+inline std::vector<std::string> shadow_switches(shadow_mode mode) {
+  if (mode == shadow_mode::off) return {};
+  if (mode == shadow_mode::opaque) return {effect_switch(effect::shadows)};
+  return {effect_switch(effect::shadows), effect_switch(effect::transparent_shadows)};
+}
+
+inline result<pass_sources> scene_vertex(const pass_shaders& shaders, pass_sources p) {
+  if (auto ok = pass_detail::finish(p.vertex, shaders, {"gbuffer.vert.glsl"}); !ok) return failure{ok.error()};
+  return p;
+}
+
+
+// What the k-buffer passes share: the G-buffer's and shadow map's read side, the hair lighting switches.
+inline void add_layers_inputs(glsl::source& src, shadow_mode shadows, const options& o, std::vector<std::string>& switches) {
+  glsl::layout_options read;
+  read.sides = glsl::side::read;
+  read.first_binding = binding(slot::gbuffer);
+  add_gbuffer_layout(src, o.layout, "gbuffer", read);
+  if (shadows != shadow_mode::off) {
+    pass_detail::add_shadow_layout(src, shadows, glsl::side::read);
+    switches.push_back(effect_switch(effect::shadows));
+  }
+  switches.push_back(effect_switch(effect::many_layers));
+}
+}  // namespace pass_detail
+
+inline glsl::source pass_source() {
+  glsl::source src;
+  add_slots(src);
+  return src;
+}
+
+inline void add_predicate(glsl::source& src, predicate p) {
+  switch (p) {
+    case predicate::rows: glsl::add_interlace<interlace::rows>(src); break;
+    case predicate::columns: glsl::add_interlace<interlace::columns>(src); break;
+    case predicate::checker: glsl::add_interlace<interlace::checker>(src); break;
+  }
+}
+
+inline void add_gbuffer_layout(glsl::source& src, gbuffer_layout l, const std::string& name, glsl::layout_options o) {
+  if (l == gbuffer_layout::thesis) {
+    glsl::add_layout<thesis_gbuffer>(src, name, o);
+  } else {
+    if (o.sides == glsl::side::read) o.depth_attachment_binding = o.first_binding + gbuffer_depth_slot;
+    glsl::add_layout<compact_gbuffer>(src, name, o);
+  }
+}
+
+inline result<pass_sources> gbuffer_pass(const pass_shaders& shaders, layer which, effects on, const options& opt) {
+  pass_sources p;
+  std::vector<std::string> switches;
+  if (which == layer::second) switches.push_back("DST_PEEL");
+  glsl::layout_options o;
+  o.sides = glsl::side::write;
+  add_gbuffer_layout(p.fragment, opt.layout, "gbuffer", o);
+  // The first peeled layer keeps every nearest fragment, transparent or not.
+  if (which == layer::interlaced && on.has(effect::transparency)) {
+    switches.push_back(effect_switch(effect::transparency));
+    add_predicate(p.fragment, opt.interlace);
+  }
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"gbuffer.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return pass_detail::scene_vertex(shaders, std::move(p));
+}
+
+inline result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode mode, effects on) {
+  pass_sources p;
+  pass_detail::add_shadow_layout(p.fragment, mode, glsl::side::write);
+  if (mode == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
+  std::vector<std::string> switches = pass_detail::shadow_switches(mode);
+  if (on.has(effect::many_layers)) switches.push_back(effect_switch(effect::many_layers));
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"shadow.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return pass_detail::scene_vertex(shaders, std::move(p));
+}
+
+inline std::vector<target_desc> light_targets(bool float_targets) {
+  return float_targets ? describe<float_light_buffer>() : describe<thesis_light_buffer>();
+}
+
+inline void add_light_layout(glsl::source& src, const std::string& name, bool float_targets, const glsl::layout_options& o) {
+  if (float_targets) glsl::add_layout<float_light_buffer>(src, name, o);
+  else glsl::add_layout<thesis_light_buffer>(src, name, o);
+}
+
+inline result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode mode, bool volume, const options& o) {
+  pass_sources p;
+  p.vertex.add_shared(text::dst_fullscreen);
+  if (auto ok = pass_detail::finish(p.vertex, shaders, {"light.vert.glsl"}, volume ? std::vector<std::string>{"DST_LIGHT_VOLUME"} : std::vector<std::string>{}); !ok)
+    return failure{ok.error()};
+  std::vector<std::string> switches = pass_detail::shadow_switches(mode);
+  if (o.physical_transmittance) switches.push_back("DST_TRANSMITTANCE");
+  glsl::layout_options read;
+  read.sides = glsl::side::read;
+  read.first_binding = binding(slot::gbuffer);
+  add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
+  glsl::layout_options write;
+  write.sides = glsl::side::write;
+  add_light_layout(p.fragment, "light", o.float_targets, write);
+  if (mode != shadow_mode::off) pass_detail::add_shadow_layout(p.fragment, mode, glsl::side::read);
+  if (mode == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"lighting.glsl", "light.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return p;
+}
+
+inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const options& o) {
+  pass_sources p;
+  p.vertex = glsl::fullscreen_vertex_shader();
+  glsl::layout_options read;
+  read.sides = glsl::side::read;
+  read.first_binding = binding(slot::gbuffer);
+  add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
+  read.first_binding = binding(slot::light);
+  add_light_layout(p.fragment, "light", o.float_targets, read);
+  std::vector<std::string> switches;
+  for (effect e : {effect::transparency, effect::refraction})
+    if (on.has(e)) switches.push_back(effect_switch(e));
+  std::string other = "interlaced.glsl";
+  if (o.method == technique::interlaced) {
+    if (on.has(effect::transparency)) add_predicate(p.fragment, o.interlace);
+    if (on.has(effect::transparency) && o.reconstruct) switches.push_back("DST_RECONSTRUCT");
+  } else {
+    read.first_binding = binding(slot::gbuffer2);
+    add_gbuffer_layout(p.fragment, o.layout, "gbuffer2", read);
+    read.first_binding = binding(slot::light2);
+    add_light_layout(p.fragment, "light2", o.float_targets, read);
+    other = "peeled.glsl";
+  }
+  // Without transparency the compose pass never asks for the other layer.
+  std::vector<std::string> files{"compose.frag.glsl"};
+  if (on.has(effect::transparency)) files.insert(files.begin(), other);
+  if (auto ok = pass_detail::finish(p.fragment, shaders, files, switches); !ok) return failure{ok.error()};
+  return p;
+}
+
+inline result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shaders, const scene& s, const frame_plan& plan,
+                                                const options& o) {
+  std::vector<named_pass> out;
+  auto add = [&](const std::string& name, result<pass_sources> p) -> result<bool> {
+    if (!p) return failure{p.error()};
+    out.push_back({name, std::move(*p)});
+    return true;
+  };
+  if (auto ok = add("gbuffer pass", gbuffer_pass(shaders, layer::interlaced, plan.on, o)); !ok) return failure{ok.error()};
+  if (plan.shadows != shadow_mode::off)
+    if (auto ok = add("shadow pass", shadow_pass(shaders, plan.shadows, plan.on)); !ok) return failure{ok.error()};
+  for (shadow_mode k : all_lookups)
+    for (int vol = 0; vol < 2; ++vol) {
+      bool used = false;
+      for (std::size_t i = 0; i < s.lights.size(); ++i)
+        used = used || (plan.lookups[i] == k && (volume_of(s.lights[i], o) != volume::fullscreen) == (vol == 1));
+      if (!used) continue;
+      const std::string name = std::string("light pass") + lookup_label(k) + (vol ? " volume" : " fullscreen");
+      if (auto ok = add(name, light_pass(shaders, k, vol == 1, o)); !ok) return failure{ok.error()};
+    }
+  if (auto ok = add("compose pass", compose_pass(shaders, plan.on, o)); !ok) return failure{ok.error()};
+  if (plan.on.has(effect::many_layers)) {
+    if (auto ok = add("capture pass", capture_pass(shaders, plan.shadows, o)); !ok) return failure{ok.error()};
+    if (auto ok = add("resolve pass", resolve_pass(shaders, plan.shadows, o)); !ok) return failure{ok.error()};
+  }
+  if (plan.on.has(effect::light_volumes))
+    if (auto ok = add("particle pass", particle_pass(shaders, plan.shadows, o)); !ok) return failure{ok.error()};
+  for (const post_pass& pass : plan.post.passes)
+    if (auto ok = add("post " + pass.name, post_pass_sources(shaders, pass, o)); !ok) return failure{ok.error()};
+  return out;
+}
+
+
+inline std::uint32_t kbuffer_capacity(const options& o) {
+  if (o.kbuffer_nodes) return o.kbuffer_nodes;
+  return std::uint32_t(kbuffer_nodes_per_pixel) * std::uint32_t(o.width) * std::uint32_t(o.height);
+}
+
+inline std::size_t frame_bytes(const frame_plan& p, const options& o) {
+  const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
+  std::size_t bytes = std::size_t(p.pipeline.bytes_per_pixel) * pixels * std::size_t(std::max(p.layers, 1));
+  if (p.shadows != shadow_mode::off) bytes += std::size_t(o.shadow_size) * std::size_t(o.shadow_size) * 8u;
+  if (p.on.has(effect::many_layers)) bytes += std::size_t(kbuffer_capacity(o)) * 16u + pixels * 4u;
+  return bytes;
+}
+
+inline std::vector<target_desc> kbuffer_tail_targets() {
+  return {{format::rgba16f, {"tail.r", "tail.g", "tail.b", "tail.alpha"}}, {format::r16f, {"optical_depth"}}};
+}
+
+inline result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
+  pass_sources p;
+  std::vector<std::string> switches;
+  pass_detail::add_layers_inputs(p.fragment, shadows, o, switches);
+  if (o.kbuffer_variant == options::layers::wboit) switches.push_back("DST_LAYERS_WBOIT");
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"kbuffer.glsl", "capture.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return pass_detail::scene_vertex(shaders, std::move(p));
+}
+
+inline result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
+  pass_sources p;
+  p.vertex = glsl::fullscreen_vertex_shader();
+  std::vector<std::string> switches;
+  pass_detail::add_layers_inputs(p.fragment, shadows, o, switches);
+  // The forward reference keeps up to 64 fragments in order and shades its tail fully too.
+  const int k = o.kbuffer_variant == options::layers::forward ? 64 : std::clamp(o.kbuffer_k, 1, 32);
+  p.fragment.add("#define DST_K " + std::to_string(k) + "\n", "dstrans/frame/passes.hpp", 1);
+  if (o.kbuffer_variant == options::layers::tailless) switches.push_back("DST_LAYERS_TAILLESS");
+  if (o.kbuffer_variant == options::layers::cheap) switches.push_back("DST_LAYERS_CHEAP");
+  if (o.kbuffer_variant == options::layers::forward) switches.push_back("DST_LAYERS_FORWARD");
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  return p;
+}
+
+inline result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
+  glsl::source src = pass_source();
+  std::string hook;
+  if (shadows != shadow_mode::off) {
+    pass_detail::add_shadow_layout(src, shadows, glsl::side::read);
+    if (shadows == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(src);
+    if (auto ok = pass_detail::finish(src, shaders, {"lighting.glsl"}, pass_detail::shadow_switches(shadows)); !ok) return failure{ok.error()};
+    // The light's own entry in the frame's lights holds its shadow map's matrix (particle_plan's lights).
+    hook = "vec3 dst_volume_shadow(dst_volume_light l, vec3 p, vec3 light) {\n"
+           "  return dst_shadowed(light, p, lights[int(l.cos_inner.y + 0.5f)]);\n"
+           "}\n";
+  }
+  static_assert(binding(slot::volume_texels) == binding(slot::volume_lights) + 1 &&
+                    binding(slot::volume_region) == binding(slot::volume_lights) + 2,
+                "the bake takes its lights, texels and region at three consecutive bindings");
+  glsl::add_light_volume_bake(src, particle_basis(o), binding(slot::volume_lights), hook);
+  return src;
+}
+
+inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
+  pass_sources p;
+  if (auto ok = pass_detail::finish(p.vertex, shaders, {"particle.vert.glsl"}); !ok) return failure{ok.error()};
+  std::vector<std::string> switches;
+  if (o.particles == options::particle_light::forward) {
+    switches.push_back("DST_PARTICLES_FORWARD");
+    if (shadows != shadow_mode::off) {
+      for (const std::string& s : pass_detail::shadow_switches(shadows)) switches.push_back(s);
+      if (auto ok = shaders.add_to(p.fragment, "shadow_layers.glsl", switches); !ok) return failure{ok.error()};
+      pass_detail::add_shadow_layout(p.fragment, shadows, glsl::side::read);
+      if (shadows == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
+    }
+  } else {
+    glsl::add_light_volume_read(p.fragment, particle_basis(o));
+  }
+  glsl::layout_options read;
+  read.sides = glsl::side::read;
+  read.first_binding = binding(slot::gbuffer);
+  add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
+  std::vector<std::string> files{"particle.frag.glsl"};
+  if (o.particles == options::particle_light::forward && shadows != shadow_mode::off) files.insert(files.begin(), "lighting.glsl");
+  if (auto ok = pass_detail::finish(p.fragment, shaders, files, switches); !ok) return failure{ok.error()};
+  return p;
+}
+
+inline result<pass_sources> post_pass_sources(const pass_shaders& shaders, const post_pass& pass, const options& o) {
+  pass_sources p;
+  p.vertex = glsl::fullscreen_vertex_shader();
+  for (const std::string& in : pass.inputs)
+    if (in == "gbuffer") {
+      glsl::layout_options read;
+      read.sides = glsl::side::read;
+      read.first_binding = binding(slot::gbuffer);
+      add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
+    }
+  for (const std::string& sw : pass.switches)
+    if (sw == "DST_AA_INTERLACE") add_predicate(p.fragment, o.interlace);
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"post.glsl", pass.shader}, pass.switches); !ok) return failure{ok.error()};
+  return p;
+}
+
+inline std::vector<target_desc> forward_targets(bool with_depth, bool float_targets) {
+  std::vector<target_desc> t{{float_targets ? format::rgba32f : format::rgba8, {"colour.r", "colour.g", "colour.b", "alpha"}},
+                             {format::rgb10a2, {"normal.x", "normal.y", "normal.z", "unused"}}};
+  if (with_depth) t.push_back({format::r32f, {"depth"}});
+  return t;
+}
+
+inline result<pass_sources> forward_pass(const pass_shaders& shaders, forward_stage stage, bool with_depth, shadow_mode mode,
+                                  bool physical_transmittance) {
+  pass_sources p;
+  std::vector<std::string> switches;
+  if (with_depth) switches.push_back("DST_FORWARD_DEPTH");
+  if (stage == forward_stage::light) {
+    for (const std::string& s : pass_detail::shadow_switches(mode)) switches.push_back(s);
+    if (physical_transmittance) switches.push_back("DST_TRANSMITTANCE");
+    if (mode != shadow_mode::off) pass_detail::add_shadow_layout(p.fragment, mode, glsl::side::read);
+  }
+  glsl::add_interlace<pass_detail::I>(p.fragment);
+  std::vector<std::string> files;
+  switch (stage) {
+    case forward_stage::ambient: files = {"forward.glsl", "forward_ambient.frag.glsl"}; break;
+    case forward_stage::light: files = {"lighting.glsl", "forward.glsl", "forward_light.frag.glsl"}; break;
+    case forward_stage::blend: files = {"forward_blend.frag.glsl"}; break;
+  }
+  if (auto ok = pass_detail::finish(p.fragment, shaders, files, switches); !ok) return failure{ok.error()};
+  if (stage == forward_stage::blend) {
+    p.vertex = glsl::fullscreen_vertex_shader();
+    return p;
+  }
+  if (auto ok = pass_detail::finish(p.vertex, shaders, {"forward.vert.glsl"}, switches); !ok) return failure{ok.error()};
+  return p;
+}
+
+}  // namespace dstrans::render

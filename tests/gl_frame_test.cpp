@@ -1,0 +1,198 @@
+// The GL frame executor (dstrans_gl_frame.hpp) as an engine runs it: one renderer for many frames and
+// sizes, the engine's own vertex arrays in the geometry passes, and nothing made for an absent effect.
+#include <catch2/catch.hpp>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <dstrans_gl_context.hpp>
+#include <dstrans_gl_frame.hpp>
+#include <scene_json.hpp>
+
+using namespace dstrans;
+
+namespace {
+
+scene example(const std::string& file) {
+  auto s = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/" + file);
+  INFO(s.error());
+  REQUIRE(s);
+  return *s;
+}
+
+render::options sized(int w, int h) {
+  render::options o;
+  o.width = w;
+  o.height = h;
+  o.shadow_size = 256;
+  return o;
+}
+
+std::unique_ptr<gl::renderer> make(const scene& s, const render::options& o) {
+  auto r = gl::renderer::create(s, o, pass_shaders());  // the shaders live only as long as the call
+  INFO(r.error());
+  REQUIRE(r);
+  return std::move(*r);
+}
+
+std::vector<texel> shown(const gl::renderer& r) { return gl::read_texels(r.output(), 0); }
+
+// The scene's meshes as an engine might keep them: one interleaved vertex buffer per object, drawn one
+// object at a time, hair objects apart.
+struct engine_meshes {
+  struct vertex {
+    glm::vec3 position;
+    std::uint32_t material;
+    glm::vec3 normal;
+  };
+  struct object_mesh {
+    GLuint vao = 0, buffers[2] = {0, 0};
+    GLsizei count = 0;
+    bool hair = false;
+  };
+  std::vector<object_mesh> objects;
+  explicit engine_meshes(const scene& s) {
+    for (std::size_t k = 0; k < s.objects.size(); ++k) {
+      scene one = s;
+      one.objects = {s.objects[k]};
+      const scene_mesh m = flatten(one);  // this object in world space
+      std::vector<vertex> v;
+      for (std::size_t i = 0; i < m.positions.size(); ++i) v.push_back({m.positions[i], m.materials[i], m.normals[i]});
+      object_mesh o;
+      o.hair = m.hair_first == 0 && !m.indices.empty();
+      o.count = GLsizei(m.indices.size());
+      glCreateBuffers(2, o.buffers);
+      glNamedBufferStorage(o.buffers[0], GLsizeiptr(std::max<std::size_t>(v.size(), 1) * sizeof(vertex)), v.data(), 0);
+      glNamedBufferStorage(o.buffers[1], GLsizeiptr(std::max<std::size_t>(m.indices.size(), 1) * 4), m.indices.data(), 0);
+      glCreateVertexArrays(1, &o.vao);
+      glVertexArrayVertexBuffer(o.vao, 0, o.buffers[0], 0, sizeof(vertex));
+      glVertexArrayElementBuffer(o.vao, o.buffers[1]);
+      for (GLuint a = 0; a < 3; ++a) {
+        glEnableVertexArrayAttrib(o.vao, a);
+        glVertexArrayAttribBinding(o.vao, a, 0);
+      }
+      glVertexArrayAttribFormat(o.vao, 0, 3, GL_FLOAT, GL_FALSE, GLuint(offsetof(vertex, position)));
+      glVertexArrayAttribFormat(o.vao, 1, 3, GL_FLOAT, GL_FALSE, GLuint(offsetof(vertex, normal)));
+      glVertexArrayAttribIFormat(o.vao, 2, 1, GL_UNSIGNED_INT, GLuint(offsetof(vertex, material)));
+      objects.push_back(o);
+    }
+  }
+  ~engine_meshes() {
+    for (object_mesh& o : objects) {
+      glDeleteVertexArrays(1, &o.vao);
+      glDeleteBuffers(2, o.buffers);
+    }
+  }
+  // Surfaces before hair, as flatten orders them: the same fragments in the same order.
+  void draw(const scheduled_pass& pass) const {
+    for (const bool hair : {false, true}) {
+      if ((hair && pass.draws == geometry_set::surfaces) || (!hair && pass.draws == geometry_set::hair)) continue;
+      for (const object_mesh& o : objects)
+        if (o.hair == hair) {
+          glBindVertexArray(o.vao);
+          glDrawElements(GL_TRIANGLES, o.count, GL_UNSIGNED_INT, nullptr);
+        }
+    }
+  }
+};
+
+}  // namespace
+
+TEST_CASE("GL renderer: one renderer draws many frames and sizes, each as a new renderer would", "[render][gl]") {
+  auto ctx = gl::headless_context::create();
+  if (!ctx) {
+    WARN("skipped GL: " << ctx.error());
+    return;
+  }
+  for (const char* file : {"glass_room.json", "hair.json", "smoke.json"}) {
+    INFO(file);
+    const scene s = example(file);
+    const gl::scene_geometry meshes(s);
+    auto draw = [&](const scheduled_pass& pass) { meshes(pass); };
+    auto r = make(s, sized(64, 36));
+    r->render(s.view, draw);
+    const std::vector<texel> first = shown(*r);
+    r->render(s.view, draw);
+    CHECK(shown(*r) == first);
+    const gl::frame_times t = r->times();
+    CHECK(t.schedule.size() == r->schedule().passes.size());
+    CHECK(t.frame_ms > 0.0);
+
+    REQUIRE(r->resize(80, 45));
+    CHECK(r->options().width == 80);
+    r->render(s.view, draw);
+    auto fresh = make(s, sized(80, 45));
+    fresh->render(s.view, draw);
+    CHECK(shown(*r) == shown(*fresh));
+    REQUIRE(r->resize(64, 36));
+    r->render(s.view, draw);
+    CHECK(shown(*r) == first);
+    CHECK(!r->resize(0, 36));
+  }
+  for (const auto& m : (*ctx)->debug_messages()) UNSCOPED_INFO(m);
+  CHECK((*ctx)->debug_messages().empty());
+}
+
+TEST_CASE("GL renderer: the engine's own vertex arrays draw the frame scene_geometry draws", "[render][gl]") {
+  auto ctx = gl::headless_context::create();
+  if (!ctx) {
+    WARN("skipped GL: " << ctx.error());
+    return;
+  }
+  struct frame_case {
+    const char* scene;
+    render::technique method;
+  };
+  for (const frame_case& c : {frame_case{"glass_room.json", render::technique::interlaced}, frame_case{"hair.json", render::technique::interlaced},
+                              frame_case{"glass_room.json", render::technique::forward}, frame_case{"glass_room.json", render::technique::peeling}}) {
+    INFO(c.scene << ", " << render::technique_name(c.method));
+    const scene s = example(c.scene);
+    render::options o = sized(64, 36);
+    o.method = c.method;
+    auto r = make(s, o);
+    const gl::scene_geometry meshes(s);
+    r->render(s.view, [&](const scheduled_pass& pass) { meshes(pass); });
+    const std::vector<texel> reference = shown(*r);
+    const engine_meshes engine(s);
+    std::vector<std::string> asked;
+    r->render(s.view, [&](const scheduled_pass& pass) {
+      asked.push_back(pass.label);
+      CHECK(pass.kind == pass_kind::geometry);
+      CHECK(pass.draws != geometry_set::none);
+      engine.draw(pass);
+    });
+    CHECK(shown(*r) == reference);
+    std::vector<std::string> geometry;
+    for (const scheduled_pass& pass : r->schedule().passes)
+      if (pass.draws != geometry_set::none) geometry.push_back(pass.label);
+    CHECK(asked == geometry);
+  }
+}
+
+TEST_CASE("GL renderer: no target or program for an effect the scene does not use", "[render][gl]") {
+  auto ctx = gl::headless_context::create();
+  if (!ctx) {
+    WARN("skipped GL: " << ctx.error());
+    return;
+  }
+  const render::options o = sized(64, 36);
+  const auto pane = make(example("pane.json"), o);
+  CHECK(pane->targets().kbuffer_heads == 0);
+  CHECK(pane->targets().volume_texels == 0);
+  CHECK(pane->targets().lit.framebuffer == 0);
+  CHECK(pane->targets().gbuffers.size() == 1);
+  CHECK(pane->targets().post.empty());
+  CHECK(pane->targets().output == &pane->targets().composed);
+  const auto hair = make(example("hair.json"), o);
+  CHECK(hair->targets().kbuffer_heads != 0);
+  CHECK(hair->targets().volume_texels == 0);
+  const auto smoke = make(example("smoke.json"), o);
+  CHECK(smoke->targets().kbuffer_heads == 0);
+  CHECK(smoke->targets().volume_texels != 0);
+  render::options forward = o;
+  forward.method = render::technique::forward;
+  const auto lit = make(example("glass_room.json"), forward);
+  CHECK(lit->targets().gbuffers.empty());
+  CHECK(lit->targets().lit.framebuffer != 0);
+}

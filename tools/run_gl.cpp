@@ -1,0 +1,91 @@
+// Implements run_gl.hpp.
+#include "run_gl.hpp"
+
+#include <algorithm>
+
+#include <dstrans/frame/passes.hpp>
+#include <dstrans_gl_frame.hpp>
+
+namespace dstrans::render {
+
+namespace {
+
+// What the frame's targets hold, as frame_output.hpp keeps it.
+void read_back(const gl::renderer& r, const scene& s, frame& out) {
+  const options& o = r.options();
+  const gl::frame_targets& t = r.targets();
+  const int w = o.width, h = o.height;
+  gl::state_guard keep;
+  if (!r.plan().forward) {
+    for (std::size_t k = 0; k < t.gbuffers[0].textures.size(); ++k) out.gbuffer.push_back(gl::read_texels(t.gbuffers[0], int(k)));
+    out.light_buffer = gl::read_texels(t.light_buffers[0], 0);
+  } else {
+    for (std::size_t k = 0; k < t.lit.textures.size(); ++k) out.lit.push_back(gl::read_texels(t.lit, int(k)));
+    out.buffers.push_back({"colour", to_image(out.lit[0], t.lit.formats[0], w, h, view_as::rgb)});
+    out.buffers.push_back({"normals", to_image(out.lit[1], format::rgb10a2, w, h, view_as::rgb)});
+    if (r.plan().forward_depth)
+      out.buffers.push_back({"depth", to_image(out.lit[2], format::r32f, w, h, view_as::depth, s.view.near_plane, s.view.far_plane)});
+  }
+  out.final_texels = gl::read_texels(*t.output, 0);
+  if (t.kbuffer_heads) {
+    out.kbuffer_heads.resize(std::size_t(w) * std::size_t(h));
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);  // into client memory
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(t.kbuffer_heads, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(out.kbuffer_heads.size() * 4), out.kbuffer_heads.data());
+    std::vector<glm::uvec4> pool(std::size_t(t.kbuffer_capacity) + 1u);
+    glGetNamedBufferSubData(t.kbuffer_nodes, 0, GLsizeiptr(pool.size() * sizeof(glm::uvec4)), pool.data());
+    out.kbuffer_overflow = pool[0].y;
+    pool.resize(std::size_t(std::min(pool[0].x, t.kbuffer_capacity)) + 1u);
+    out.kbuffer_nodes.assign(pool.begin() + 1, pool.end());
+  }
+  if (t.volume_texels) {
+    out.volume_texels.resize(t.volume_texel_count);
+    glGetNamedBufferSubData(t.volume_texels, 0, GLsizeiptr(t.volume_texel_count * sizeof(glm::vec4)), out.volume_texels.data());
+  }
+  const format final_format = final_target_desc(o.float_targets).fmt, light_format = light_targets(o.float_targets)[0].fmt;
+  out.final_image = to_image(out.final_texels, final_format, w, h, view_as::rgb);
+  for (std::size_t k = 0; k < t.gbuffers.size(); ++k) {
+    const std::string suffix = k ? "_2" : "";
+    const gl::targets &gb = t.gbuffers[k], &lb = t.light_buffers[k];
+    out.buffers.push_back({"diffuse" + suffix, to_image(gl::read_texels(gb, 0), format::rgba8, w, h, view_as::rgb)});
+    if (o.layout == gbuffer_layout::thesis) {  // the compact layout's normals are octahedral, its depth an attachment
+      out.buffers.push_back({"normals" + suffix, to_image(gl::read_texels(gb, 1), format::rgb10a2, w, h, view_as::rgb)});
+      out.buffers.push_back({"depth" + suffix, to_image(gl::read_texels(gb, 3), format::r32f, w, h, view_as::depth,
+                                                        s.view.near_plane, s.view.far_plane)});
+    }
+    const std::vector<texel> light = gl::read_texels(lb, 0);
+    out.buffers.push_back({"light" + suffix, to_image(light, light_format, w, h, view_as::rgb)});
+    out.buffers.push_back({"specular" + suffix, to_image(light, light_format, w, h, view_as::alpha)});
+  }
+  if (t.shadow_picture.framebuffer)
+    out.buffers.push_back({"shadow_colour", to_image(gl::read_texels(t.shadow_picture, 0), format::rgba8, o.shadow_size,
+                                                     o.shadow_size, view_as::rgb)});
+  if (!r.plan().post.passes.empty()) {
+    out.buffers.push_back({"composed", to_image(gl::read_texels(t.composed, 0), final_format, w, h, view_as::rgb)});
+    for (const std::string& effect : r.plan().post.effects)
+      out.buffers.push_back({"post_" + effect, to_image(gl::read_texels(t.post.at(effect), 0), final_format, w, h, view_as::rgb)});
+  }
+}
+
+}  // namespace
+
+result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shaders) {
+  auto r = gl::renderer::create(s, o, shaders);
+  if (!r) return failure{r.error()};
+  const gl::scene_geometry meshes(s);
+  std::vector<std::map<std::string, double>> frames;
+  std::vector<double> totals;
+  frame out;
+  for (int n = 0; n < std::max(o.frames, 1); ++n) {
+    (*r)->render(s.view, [&](const scheduled_pass& pass) { meshes(pass); });
+    gl::frame_times t = (*r)->times();
+    frames.push_back(t.pass_ms);
+    totals.push_back(t.frame_ms);
+    out.schedule = t.schedule;
+  }
+  summarize(frames, totals, out);
+  read_back(**r, s, out);
+  return out;
+}
+
+}  // namespace dstrans::render

@@ -1,0 +1,17 @@
+// A scene's frames on OpenGL, as the command line takes them: its meshes drawn through
+// dstrans::gl::renderer (dstrans_gl_frame.hpp) in the current context, o.frames times, and read back.
+#pragma once
+
+#include <dstrans/frame/plan.hpp>
+#include <dstrans/pass_shaders.hpp>
+#include <dstrans/result.hpp>
+#include <dstrans/scene.hpp>
+
+#include "frame_output.hpp"
+
+namespace dstrans::render {
+
+// The last of o.frames frames of `s` (times: their medians), with the pass shaders `shaders`.
+result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shaders);
+
+}  // namespace dstrans::render
