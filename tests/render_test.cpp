@@ -15,7 +15,7 @@
 #include <dstrans/dstrans.hpp>
 #include <dstrans/light_volume.hpp>
 #include <run_gl.hpp>
-#include <render_vk.hpp>
+#include <run_vk.hpp>
 #include <dstrans/frame/plan.hpp>
 #include <leaks.hpp>
 #include <dstrans/frame/passes.hpp>
@@ -63,7 +63,7 @@ std::optional<frame> draw(backend b, const scene& s, const options& o) {
   {
     auto dev = vk::device::create((*hd)->ctx());
     REQUIRE(dev);
-    auto f = render::render_vk(**dev, s, o, pass_shaders());
+    auto f = render::run_vk(**dev, s, o, pass_shaders());
     INFO(f.error());
     REQUIRE(f);
     out = *f;

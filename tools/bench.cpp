@@ -25,7 +25,7 @@
 #include "run_gl.hpp"
 #endif
 #ifdef DSTRANS_HAVE_VK
-#include "render_vk.hpp"
+#include "run_vk.hpp"
 #endif
 #include "scene_json.hpp"
 #include "shipped_files.hpp"
@@ -507,7 +507,7 @@ int bench(std::vector<std::string> args) {
         if ((*g)->gl) return render::run_gl(s, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
-        if ((*g)->vk) return render::render_vk(*(*g)->vk, s, o, pass_shaders());
+        if ((*g)->vk) return render::run_vk(*(*g)->vk, s, o, pass_shaders());
 #endif
         return failure{"no backend"};
       };
@@ -604,7 +604,7 @@ int bench(std::vector<std::string> args) {
         if (on.gl) return render::run_gl(s, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
-        if (on.vk) return render::render_vk(*on.vk, s, o, pass_shaders());
+        if (on.vk) return render::run_vk(*on.vk, s, o, pass_shaders());
 #endif
         return failure{"no backend"};
       };

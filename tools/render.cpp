@@ -12,7 +12,7 @@
 #include "run_gl.hpp"
 #endif
 #ifdef DSTRANS_HAVE_VK
-#include "render_vk.hpp"
+#include "run_vk.hpp"
 #endif
 #include "scene_json.hpp"
 
@@ -149,7 +149,7 @@ int render(std::vector<std::string> args) {
     if ((*g)->gl) f = render::run_gl(*s, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
-    if ((*g)->vk) f = render::render_vk(*(*g)->vk, *s, o, pass_shaders());
+    if ((*g)->vk) f = render::run_vk(*(*g)->vk, *s, o, pass_shaders());
 #endif
     if (!f) {
       std::fprintf(stderr, "dstrans render: %s\n", f.error().c_str());

@@ -242,8 +242,8 @@ result<bool> renderer::impl::make_fixed() {
 void renderer::impl::make_particles() {
   const volume_atlas& atlas = smoke.atlas;
   atlas_size = glm::max(atlas.size, glm::ivec3(1));  // a forced effect with no system
-  out.volume_texel_count = std::size_t(atlas_size.x) * std::size_t(atlas_size.y) * std::size_t(atlas_size.z);
   if (smoke.baking) {
+    out.volume_texel_count = std::size_t(atlas_size.x) * std::size_t(atlas_size.y) * std::size_t(atlas_size.z);
     out.volume_texels = make_buffer(std::vector<glm::vec4>(out.volume_texel_count), "volume texels");
     buffers.push_back(out.volume_texels);
     for (std::size_t k = 0; k < atlas.regions.size(); ++k)

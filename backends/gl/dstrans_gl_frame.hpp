@@ -48,7 +48,7 @@ struct frame_targets {
   GLuint kbuffer_nodes = 0;       // a header (count, overflow, capacity) and the node pool, uvec4 each
   std::uint32_t kbuffer_capacity = 0;
   GLuint volume_texels = 0;       // the light volumes' atlas as the bake adds into it, vec4 a texel
-  std::size_t volume_texel_count = 0;
+  std::size_t volume_texel_count = 0;  // 0: no bake
 };
 
 // What the last frame's passes took on the GPU: the timers in the order they ran (a pass each), each

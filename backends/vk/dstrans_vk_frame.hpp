@@ -1,0 +1,125 @@
+// dstrans on Vulkan: the whole frame, recorded into the engine's command buffer (dstrans_vk_frame.{hpp,cpp}).
+//
+// Implements the frame executor: `renderer` builds the pipelines, targets, buffers and descriptor sets a
+// frame needs once, on the engine's device (dstrans::vk::device over the engine's dstrans::vk::context),
+// and records the frame's schedule (dstrans/frame/schedule.hpp) into a command buffer the engine owns and
+// submits, with a barrier before each pass derived from what it reads and writes and the passes before it
+// wrote and read (in this frame and the last), and a GPU timestamp around each pass. It never submits.
+// The engine draws its own meshes in the geometry passes through a callback; `scene_geometry` is that
+// callback for a dstrans::scene's meshes.
+//
+//   auto r = dstrans::vk::renderer::create(dev, description, options);      // once
+//   r->record(cmd, camera, [&](VkCommandBuffer cmd, const dstrans::scheduled_pass& pass) {
+//     bind_and_draw_my_meshes(cmd, pass.draws);   // pipeline, descriptor sets and targets are bound
+//   });                                           // then the engine submits cmd
+//   r->output();                                  // the image (GENERAL layout, written as a colour attachment)
+//
+// Frames in flight: each of create's `frames_in_flight` frames has its own camera block, particle quads,
+// descriptor sets and timestamps, used again `frames_in_flight` records later; before that record, the
+// engine waits for the submission of the frame that used them (as it does for its own per-frame objects).
+// Targets are shared: the barriers order one frame's passes after the last frame's.
+//
+// The geometry a pass draws (pass.draws) is every surface but hair, the hair alone, or both, at vertex
+// bindings and attributes `vertex_input` (by default three streams: binding 0 the world-space position
+// (vec3) at location 0, binding 1 the normal (hair: the tangent, vec3) at 1, binding 2 the material index
+// (uint) at 2). Binding 3 is the renderer's (a light pass's light index). Draw with firstInstance 0.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <dstrans/frame/plan.hpp>
+#include <dstrans/frame/schedule.hpp>
+#include <dstrans/pass_shaders.hpp>
+#include <dstrans/scene.hpp>
+
+#include "dstrans_vk.hpp"
+
+namespace dstrans::vk {
+
+// The engine's geometry: called in every geometry pass of the schedule with the command buffer and the pass.
+using draw_geometry = std::function<void(VkCommandBuffer cmd, const scheduled_pass& pass)>;
+
+// How the engine's vertices reach locations 0 (position), 1 (normal) and 2 (material).
+struct vertex_input {
+  std::vector<VkVertexInputBindingDescription> bindings;
+  std::vector<VkVertexInputAttributeDescription> attributes;
+  // Three streams: position, normal and material index at bindings 0, 1, 2.
+  static vertex_input streams();
+};
+
+// The frame's targets, for reading back or showing; empty where the frame has none.
+struct frame_targets {
+  std::vector<targets> gbuffers, light_buffers;  // one a layer (peeling: two; forward: none)
+  targets lit;                     // forward rendering's colour, normal (and depth)
+  targets composed;                // the frame before the post chain
+  std::map<std::string, targets> post;  // the post chain's, by name
+  const targets* output = nullptr;      // the image shown: the post chain's output, or `composed`
+  buffer shadow_picture;           // the first shadowed light's shadow colour (RGBA8), copied in the first frame
+  image kbuffer_heads;             // R32_UINT, each pixel's list head
+  buffer kbuffer_nodes;            // a header (count, overflow, capacity) and the node pool, uvec4 each
+  std::uint32_t kbuffer_capacity = 0;
+  buffer volume_texels;            // the light volumes' atlas as the bake adds into it, vec4 a texel
+  std::size_t volume_texel_count = 0;  // 0: no bake
+};
+
+// What a recorded frame's passes took on the GPU, once its submission has completed: the timers in the
+// order they ran, each timer's sum, and the whole frame from its first pass to its last.
+struct frame_times {
+  std::vector<std::string> schedule;
+  std::map<std::string, double> pass_ms;
+  double frame_ms = 0.0;
+};
+
+class renderer {
+ public:
+  // Everything a frame of `description` needs with `o` (its materials, lights, particle systems and post
+  // chain; through its objects, the effects it calls for and the bounds its shadow maps cover).
+  static result<std::unique_ptr<renderer>> create(device& dev, const scene& description, const render::options& o,
+                                                  const pass_shaders& shaders = pass_shaders(),
+                                                  const vertex_input& vertices = vertex_input::streams(), int frames_in_flight = 2);
+  ~renderer();
+  renderer(const renderer&) = delete;
+  renderer& operator=(const renderer&) = delete;
+
+  // Records one frame seen from `view` into `cmd` (begun, outside rendering), its geometry drawn by `draw`.
+  void record(VkCommandBuffer cmd, const camera& view, const draw_geometry& draw);
+  // Makes the targets for a frame of `width` x `height` again; the pipelines stay. No frame may be in flight.
+  result<bool> resize(int width, int height);
+
+  const frame_schedule& schedule() const;
+  const render::frame_plan& plan() const;
+  const render::options& options() const;
+  const frame_targets& targets() const;
+  const vk::targets& output() const { return *targets().output; }
+  // The GPU times of the frame recorded last (its submission must have completed).
+  frame_times times() const;
+
+ private:
+  struct impl;
+  explicit renderer(std::unique_ptr<impl> p);
+  std::unique_ptr<impl> p_;
+};
+
+// A dstrans::scene's meshes as the engine geometry of `renderer`: world-space vertex streams, hair last
+// (dstrans::flatten), at vertex_input::streams()'s bindings.
+class scene_geometry {
+ public:
+  static result<std::unique_ptr<scene_geometry>> create(device& dev, const scene& s);
+  ~scene_geometry();
+  scene_geometry(const scene_geometry&) = delete;
+  scene_geometry& operator=(const scene_geometry&) = delete;
+  // Binds the streams and draws what `pass` asks for.
+  void operator()(VkCommandBuffer cmd, const scheduled_pass& pass) const;
+
+ private:
+  explicit scene_geometry(device& dev) : dev_(dev) {}
+  device& dev_;
+  buffer buffers_[4];
+  std::size_t hair_first_ = 0, index_count_ = 0;
+};
+
+}  // namespace dstrans::vk

@@ -1,0 +1,106 @@
+// Implements run_vk.hpp.
+#include "run_vk.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <tuple>
+
+#include <dstrans/frame/passes.hpp>
+#include <dstrans_vk_frame.hpp>
+
+namespace dstrans::render {
+
+namespace {
+
+// What the frame's targets hold, as frame_output.hpp keeps it.
+result<bool> read_back(vk::device& dev, const vk::renderer& r, const scene& s, frame& out) {
+  const options& o = r.options();
+  const vk::frame_targets& t = r.targets();
+  const frame_plan& plan = r.plan();
+  const int w = o.width, h = o.height;
+  auto texels = [&](const vk::targets& from, int index, std::vector<texel>& into) -> result<bool> {
+    auto got = dev.read_texels(from, index);
+    if (!got) return failure{got.error()};
+    into = *got;
+    return true;
+  };
+  if (plan.forward) {
+    out.lit.resize(t.lit.colors.size());
+    for (std::size_t k = 0; k < t.lit.colors.size(); ++k)
+      if (auto ok = texels(t.lit, int(k), out.lit[k]); !ok) return ok;
+  } else {
+    out.gbuffer.resize(t.gbuffers[0].colors.size());
+    for (std::size_t k = 0; k < t.gbuffers[0].colors.size(); ++k)
+      if (auto ok = texels(t.gbuffers[0], int(k), out.gbuffer[k]); !ok) return ok;
+    if (auto ok = texels(t.light_buffers[0], 0, out.light_buffer); !ok) return ok;
+  }
+  if (auto ok = texels(*t.output, 0, out.final_texels); !ok) return ok;
+  if (t.kbuffer_heads.view) {
+    auto heads = dev.read_words(t.kbuffer_heads, w, h);
+    if (!heads) return failure{heads.error()};
+    out.kbuffer_heads = *heads;
+    const auto* pool = static_cast<const glm::uvec4*>(t.kbuffer_nodes.mapped);
+    out.kbuffer_overflow = pool[0].y;
+    out.kbuffer_nodes.assign(pool + 1, pool + 1 + std::min(pool[0].x, t.kbuffer_capacity));
+  }
+  if (t.volume_texel_count) {
+    const auto* v = static_cast<const glm::vec4*>(t.volume_texels.mapped);
+    out.volume_texels.assign(v, v + t.volume_texel_count);
+  }
+  const format final_format = final_target_desc(o.float_targets).fmt;
+  out.final_image = to_image(out.final_texels, final_format, w, h, view_as::rgb);
+  const format light_format = light_targets(o.float_targets)[0].fmt;
+  std::vector<std::tuple<std::string, const vk::targets*, int, format, view_as>> wanted;
+  if (plan.forward) {
+    wanted = {{"colour", &t.lit, 0, t.lit.formats[0], view_as::rgb}, {"normals", &t.lit, 1, format::rgb10a2, view_as::rgb}};
+    if (plan.forward_depth) wanted.push_back({"depth", &t.lit, 2, format::r32f, view_as::depth});
+  }
+  for (std::size_t k = 0; k < t.gbuffers.size(); ++k) {
+    const std::string suffix = k ? "_2" : "";
+    const vk::targets *gb = &t.gbuffers[k], *lb = &t.light_buffers[k];
+    wanted.push_back({"diffuse" + suffix, gb, 0, format::rgba8, view_as::rgb});
+    if (o.layout == gbuffer_layout::thesis)  // the compact layout's normals are octahedral, its depth an attachment
+      wanted.insert(wanted.end(), {{"normals" + suffix, gb, 1, format::rgb10a2, view_as::rgb}, {"depth" + suffix, gb, 3, format::r32f, view_as::depth}});
+    wanted.insert(wanted.end(), {{"light" + suffix, lb, 0, light_format, view_as::rgb}, {"specular" + suffix, lb, 0, light_format, view_as::alpha}});
+  }
+  if (!plan.post.passes.empty()) {
+    wanted.push_back({"composed", &t.composed, 0, final_format, view_as::rgb});
+    for (const std::string& effect : plan.post.effects) wanted.push_back({"post_" + effect, &t.post.at(effect), 0, final_format, view_as::rgb});
+  }
+  for (const auto& [name, from, index, f, how] : wanted) {
+    std::vector<texel> got;
+    if (auto ok = texels(*from, index, got); !ok) return ok;
+    out.buffers.push_back({name, to_image(got, f, w, h, how, s.view.near_plane, s.view.far_plane)});
+  }
+  if (t.shadow_picture.mapped) {
+    std::vector<texel> picture(std::size_t(o.shadow_size) * std::size_t(o.shadow_size));
+    const auto* bytes = static_cast<const std::uint8_t*>(t.shadow_picture.mapped);
+    for (std::size_t i = 0; i < picture.size(); ++i) std::memcpy(picture[i].data(), bytes + 4 * i, 4);
+    out.buffers.push_back({"shadow_colour", to_image(picture, format::rgba8, o.shadow_size, o.shadow_size, view_as::rgb)});
+  }
+  return true;
+}
+
+}  // namespace
+
+result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders) {
+  auto r = vk::renderer::create(dev, s, o, shaders);
+  if (!r) return failure{r.error()};
+  auto meshes = vk::scene_geometry::create(dev, s);
+  if (!meshes) return failure{meshes.error()};
+  std::vector<std::map<std::string, double>> frames;
+  std::vector<double> totals;
+  frame out;
+  for (int n = 0; n < std::max(o.frames, 1); ++n) {
+    dev.submit([&](VkCommandBuffer cmd) { (*r)->record(cmd, s.view, [&](VkCommandBuffer c, const scheduled_pass& pass) { (**meshes)(c, pass); }); });
+    const vk::frame_times t = (*r)->times();
+    frames.push_back(t.pass_ms);
+    totals.push_back(t.frame_ms);
+    out.schedule = t.schedule;
+  }
+  summarize(frames, totals, out);
+  if (auto ok = read_back(dev, **r, s, out); !ok) return failure{ok.error()};
+  return out;
+}
+
+}  // namespace dstrans::render

@@ -1,0 +1,19 @@
+// A scene's frames on Vulkan, as the command line takes them: its meshes drawn through
+// dstrans::vk::renderer (dstrans_vk_frame.hpp), recorded into dstrans::vk::device's command buffer and
+// submitted, o.frames times, and read back.
+#pragma once
+
+#include <dstrans/frame/plan.hpp>
+#include <dstrans/pass_shaders.hpp>
+#include <dstrans/result.hpp>
+#include <dstrans/scene.hpp>
+#include <dstrans_vk.hpp>
+
+#include "frame_output.hpp"
+
+namespace dstrans::render {
+
+// The last of o.frames frames of `s` on `dev` (times: their medians), with the pass shaders `shaders`.
+result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);
+
+}  // namespace dstrans::render
