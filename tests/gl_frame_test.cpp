@@ -115,7 +115,7 @@ TEST_CASE("GL renderer: one renderer draws many frames and sizes, each as a new 
     const std::vector<texel> first = shown(*r);
     r->render(s.view, draw);
     CHECK(shown(*r) == first);
-    const gl::frame_times t = r->times();
+    const frame_times t = r->times();
     CHECK(t.schedule.size() == r->schedule().passes.size());
     CHECK(t.frame_ms > 0.0);
 

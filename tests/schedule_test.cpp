@@ -123,3 +123,22 @@ TEST_CASE("a schedule states each pass's fixed-function state, clears and geomet
     }
   }
 }
+
+TEST_CASE("drawn_indices picks a pass's run of a flattened scene, and times_of sums a frame's passes by timer", "[schedule]") {
+  CHECK(drawn_indices(geometry_set::surfaces, 30, 50).first == 0);
+  CHECK(drawn_indices(geometry_set::surfaces, 30, 50).count == 30);
+  CHECK(drawn_indices(geometry_set::hair, 30, 50).first == 30);
+  CHECK(drawn_indices(geometry_set::hair, 30, 50).count == 20);
+  CHECK(drawn_indices(geometry_set::everything, 30, 50).count == 50);
+  CHECK(drawn_indices(geometry_set::none, 30, 50).count == 0);
+  CHECK(drawn_indices(geometry_set::hair, 50, 50).count == 0);  // no hair
+  frame_schedule s;
+  s.passes = {scheduled_pass("shadow", "shadow pass, light 0", pass_kind::geometry, 0, {"scene"}, {"shadow map"}),
+              scheduled_pass("light", "light pass, light 0", pass_kind::fullscreen, 0, {"shadow map"}, {"light buffer"}),
+              scheduled_pass("shadow", "shadow pass, light 1", pass_kind::geometry, 1, {"scene"}, {"shadow map"})};
+  const frame_times t = times_of(s, {1.0, 2.0, 4.0}, 9.0);
+  CHECK(t.schedule == std::vector<std::string>{"shadow", "light", "shadow"});
+  CHECK(t.pass_ms.at("shadow") == 5.0);
+  CHECK(t.pass_ms.at("light") == 2.0);
+  CHECK(t.frame_ms == 9.0);
+}

@@ -118,7 +118,7 @@ TEST_CASE("VK renderer: frames recorded into the engine's command buffers, two i
     e.frame(0, [&](VkCommandBuffer cmd) { r->record(cmd, s.view, draw); });
     e.idle();
     const std::vector<texel> first = e.shown(*r);
-    const vk::frame_times t = r->times();
+    const frame_times t = r->times();
     CHECK(t.schedule.size() == r->schedule().passes.size());
     CHECK(t.frame_ms > 0.0);
     for (int n = 1; n < 5; ++n) e.frame(n, [&](VkCommandBuffer cmd) { r->record(cmd, s.view, draw); });

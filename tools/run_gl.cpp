@@ -78,7 +78,7 @@ result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shade
   frame out;
   for (int n = 0; n < std::max(o.frames, 1); ++n) {
     (*r)->render(s.view, [&](const scheduled_pass& pass) { meshes(pass); });
-    gl::frame_times t = (*r)->times();
+    frame_times t = (*r)->times();
     frames.push_back(t.pass_ms);
     totals.push_back(t.frame_ms);
     out.schedule = t.schedule;

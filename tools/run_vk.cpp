@@ -93,7 +93,7 @@ result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pa
   frame out;
   for (int n = 0; n < std::max(o.frames, 1); ++n) {
     dev.submit([&](VkCommandBuffer cmd) { (*r)->record(cmd, s.view, [&](VkCommandBuffer c, const scheduled_pass& pass) { (**meshes)(c, pass); }); });
-    const vk::frame_times t = (*r)->times();
+    const frame_times t = (*r)->times();
     frames.push_back(t.pass_ms);
     totals.push_back(t.frame_ms);
     out.schedule = t.schedule;

@@ -619,11 +619,10 @@ void renderer::render(const camera& view, const draw_geometry& draw) {
 }
 
 frame_times renderer::times() const {
-  frame_times t;
-  t.schedule = p_->recorded;
-  for (std::size_t k = 0; k < p_->recorded.size(); ++k) t.pass_ms[p_->recorded[k]] += p_->timers[k].milliseconds();
-  if (!p_->recorded.empty()) t.frame_ms = p_->whole.milliseconds();
-  return t;
+  if (p_->recorded.empty()) return {};
+  std::vector<double> ms;
+  for (std::size_t k = 0; k < p_->recorded.size(); ++k) ms.push_back(p_->timers[k].milliseconds());
+  return times_of(p_->schedule, ms, p_->whole.milliseconds());
 }
 
 const frame_schedule& renderer::schedule() const { return p_->schedule; }
@@ -660,12 +659,10 @@ scene_geometry::~scene_geometry() {
 }
 
 void scene_geometry::operator()(const scheduled_pass& pass) const {
-  std::size_t first = 0, count = index_count_;
-  if (pass.draws == geometry_set::surfaces) count = hair_first_;
-  if (pass.draws == geometry_set::hair) first = hair_first_, count = index_count_ - hair_first_;
-  if (pass.draws == geometry_set::none || count == 0) return;
+  const index_run run = drawn_indices(pass.draws, hair_first_, index_count_);
+  if (run.count == 0) return;
   glBindVertexArray(vertex_array_);
-  glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
+  glDrawElements(GL_TRIANGLES, GLsizei(run.count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(run.first * sizeof(std::uint32_t)));
 }
 
 }  // namespace dstrans::gl

@@ -51,14 +51,6 @@ struct frame_targets {
   std::size_t volume_texel_count = 0;  // 0: no bake
 };
 
-// What the last frame's passes took on the GPU: the timers in the order they ran (a pass each), each
-// timer's sum, and the whole frame from its first pass to its last.
-struct frame_times {
-  std::vector<std::string> schedule;
-  std::map<std::string, double> pass_ms;
-  double frame_ms = 0.0;
-};
-
 class renderer {
  public:
   // Compiles every program and allocates every target a frame of `description` needs with `o`: its

@@ -888,18 +888,14 @@ void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geomet
 
 frame_times renderer::times() const {
   const impl& r = *p_;
-  frame_times t;
-  if (r.last_slot < 0) return t;
+  if (r.last_slot < 0) return {};
   std::vector<std::uint64_t> ticks(r.queries_per_frame);
   vkGetQueryPoolResults(r.dev.ctx().device, r.queries, std::uint32_t(r.last_slot) * r.queries_per_frame, r.queries_per_frame,
                         ticks.size() * sizeof ticks[0], ticks.data(), sizeof ticks[0], VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
   auto ms = [&](std::uint64_t from, std::uint64_t to) { return double(to - from) * r.timestamp_ns * 1e-6; };
-  for (std::size_t k = 0; k < r.schedule.passes.size(); ++k) {
-    t.schedule.push_back(r.schedule.passes[k].timer);
-    t.pass_ms[r.schedule.passes[k].timer] += ms(ticks[2 + 2 * k], ticks[3 + 2 * k]);
-  }
-  t.frame_ms = ms(ticks[0], ticks[1]);
-  return t;
+  std::vector<double> passes;
+  for (std::size_t k = 0; k < r.schedule.passes.size(); ++k) passes.push_back(ms(ticks[2 + 2 * k], ticks[3 + 2 * k]));
+  return times_of(r.schedule, passes, ms(ticks[0], ticks[1]));
 }
 
 const frame_schedule& renderer::schedule() const { return p_->schedule; }
@@ -928,15 +924,13 @@ scene_geometry::~scene_geometry() {
 }
 
 void scene_geometry::operator()(VkCommandBuffer cmd, const scheduled_pass& pass) const {
-  std::size_t first = 0, count = index_count_;
-  if (pass.draws == geometry_set::surfaces) count = hair_first_;
-  if (pass.draws == geometry_set::hair) first = hair_first_, count = index_count_ - hair_first_;
-  if (pass.draws == geometry_set::none || count == 0) return;
+  const index_run run = drawn_indices(pass.draws, hair_first_, index_count_);
+  if (run.count == 0) return;
   const VkBuffer streams[] = {buffers_[0].handle, buffers_[1].handle, buffers_[2].handle};
   const VkDeviceSize offsets[] = {0, 0, 0};
   vkCmdBindVertexBuffers(cmd, 0, 3, streams, offsets);
   vkCmdBindIndexBuffer(cmd, buffers_[3].handle, 0, VK_INDEX_TYPE_UINT32);
-  vkCmdDrawIndexed(cmd, std::uint32_t(count), 1, std::uint32_t(first), 0, 0);
+  vkCmdDrawIndexed(cmd, std::uint32_t(run.count), 1, std::uint32_t(run.first), 0, 0);
 }
 
 }  // namespace dstrans::vk

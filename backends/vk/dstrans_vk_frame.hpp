@@ -66,14 +66,6 @@ struct frame_targets {
   std::size_t volume_texel_count = 0;  // 0: no bake
 };
 
-// What a recorded frame's passes took on the GPU, once its submission has completed: the timers in the
-// order they ran, each timer's sum, and the whole frame from its first pass to its last.
-struct frame_times {
-  std::vector<std::string> schedule;
-  std::map<std::string, double> pass_ms;
-  double frame_ms = 0.0;
-};
-
 class renderer {
  public:
   // Everything a frame of `description` needs with `o` (its materials, lights, particle systems and post

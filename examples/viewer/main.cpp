@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
       }
     }
     glfwSwapBuffers(window);
-    const gl::frame_times times = r.times();
+    const frame_times times = r.times();
     std::string passes;
     for (const auto& [name, ms] : times.pass_ms) {
       char part[64];

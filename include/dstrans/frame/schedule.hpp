@@ -9,6 +9,8 @@
 //   auto ok = dstrans::check_schedule(s, {"scene"}, {"final"});   // reads come after writes; nothing is unused
 #pragma once
 
+#include <cstddef>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -85,6 +87,35 @@ struct frame_schedule {
   std::vector<scheduled_pass> passes;
   std::vector<std::string> cleared;  // resources cleared to zero as the frame begins, outside every pass
 };
+
+// Of a flattened scene's `count` indices, hair last from `hair_first` (dstrans::flatten), the run a pass
+// that draws `set` draws.
+struct index_run {
+  std::size_t first = 0, count = 0;
+};
+inline index_run drawn_indices(geometry_set set, std::size_t hair_first, std::size_t count) {
+  if (set == geometry_set::none) return {};
+  if (set == geometry_set::surfaces) return {0, hair_first};
+  if (set == geometry_set::hair) return {hair_first, count - hair_first};
+  return {0, count};
+}
+
+// What a frame's passes took on the GPU: the timers in the order they ran (a pass each), each timer's
+// sum, and the whole frame from its first pass to its last; from each pass's time in schedule order.
+struct frame_times {
+  std::vector<std::string> schedule;
+  std::map<std::string, double> pass_ms;
+  double frame_ms = 0.0;
+};
+inline frame_times times_of(const frame_schedule& s, const std::vector<double>& pass_ms, double frame_ms) {
+  frame_times t;
+  for (std::size_t k = 0; k < s.passes.size() && k < pass_ms.size(); ++k) {
+    t.schedule.push_back(s.passes[k].timer);
+    t.pass_ms[s.passes[k].timer] += pass_ms[k];
+  }
+  t.frame_ms = frame_ms;
+  return t;
+}
 
 // Whether every pass reads only what an earlier pass wrote or the frame is given (`inputs`), and everything
 // written is read by a later pass or is one of `outputs`; the failure names the first pass that is not so.
