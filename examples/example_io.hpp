@@ -36,7 +36,7 @@ inline bool whole_number(const char* option, const char* text, int lo, int hi, i
   return true;
 }
 
-// The engines' command line: [--step 0|1|2|3] [--out image.png], and [--validate] where `validate` is
+// The engines' command line: [--step 0|1|2|3|4] [--out image.png], and [--validate] where `validate` is
 // given. Returns -1 to go on, or the exit code to stop with (0 after --help, 2 after a bad argument).
 inline int engine_arguments(int argc, char** argv, const char* name, const char* usage, int& step, std::string& out,
                             bool* validate = nullptr) {
@@ -53,7 +53,7 @@ inline int engine_arguments(int argc, char** argv, const char* name, const char*
     if (validate && a == "--validate") {
       *validate = true;
     } else if (a == "--step") {
-      if (!whole_number("--step", argv[++i], 0, 3, step)) return 2;
+      if (!whole_number("--step", argv[++i], 0, 4, step)) return 2;
     } else if (a == "--out") {
       out = argv[++i];
     } else {

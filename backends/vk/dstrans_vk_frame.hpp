@@ -19,6 +19,9 @@
 // engine waits for the submission of the frame that used them (as it does for its own per-frame objects).
 // Targets are shared: the barriers order one frame's passes after the last frame's.
 //
+// The engine's device needs dynamic rendering and the features depthClamp (light volumes) and
+// fragmentStoresAndAtomics (the k-buffer's lists).
+//
 // The geometry a pass draws (pass.draws) is every surface but hair, the hair alone, or both, at vertex
 // bindings and attributes `vertex_input` (by default three streams: binding 0 the world-space position
 // (vec3) at location 0, binding 1 the normal (hair: the tangent, vec3) at 1, binding 2 the material index

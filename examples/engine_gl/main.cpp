@@ -3,8 +3,10 @@
 //   --step 1  dstrans's G-buffer layout (Table 3.1) and interlaced transparency
 //   --step 2  + coloured shadows from the glass (Table 3.3 shadow map, Eq. 3.1)
 //   --step 3  + refraction with depth rejection (Eq. 3.3)
-// Its meshes, camera, materials, textures, programs and bindings are its own; dstrans brings GLSL text
-// (layouts with the engine's hooks, the interlace predicate, shared formulas) and nothing else.
+//   --step 4  the whole frame through dstrans's renderer (dstrans_gl_frame.hpp), with hair, smoke and a
+//             post chain, the engine drawing its own vertex arrays in each geometry pass
+// Up to step 3 its meshes, camera, materials, textures, programs and bindings are its own; dstrans brings
+// GLSL text (layouts with the engine's hooks, the interlace predicate, shared formulas) and nothing else.
 //
 //   engine_gl --step 3 --out step3.png
 #include <cstdio>
@@ -21,7 +23,9 @@
 
 #include <dstrans/dstrans.hpp>
 #include <dstrans_gl_context.hpp>  // this example's stand-in for the engine's window and context
+#include <dstrans_gl_frame.hpp>    // [step 4] the whole frame
 
+#include "../engine_world.hpp"
 #include "../example_io.hpp"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION  // stb_image_write.h's definitions, here once
@@ -372,8 +376,59 @@ std::string dstrans_text(bool gbuffer_write, bool shadow_write, bool shadows_rea
 
 }  // namespace engine
 
+// [step 4] The whole frame: dstrans's renderer runs every pass on the engine's context; the engine hands
+// it a description of the world and draws its own vertex arrays (world-space position and normal) when a
+// geometry pass asks, the material at attribute 2 as a constant per draw.
+int whole_frame(const std::string& out, int w, int h) {
+  const dstrans::scene world = example::engine_world();
+  struct drawn_mesh {
+    engine::mesh shape;
+    std::uint32_t material;
+    bool hair;
+  };
+  std::vector<drawn_mesh> meshes;
+  for (const dstrans::object& o : world.objects) {
+    std::vector<engine::vertex> v;
+    for (const example::world_vertex& p : example::world_vertices(world, o)) v.push_back({p.position, p.normal});
+    meshes.push_back({engine::upload(v, o.geometry.indices), o.material, world.materials[o.material].hair});
+  }
+  dstrans::render::options o;  // as dstrans render draws a scene
+  o.width = w;
+  o.height = h;
+  o.shadow_size = 1024;
+  auto r = dstrans::gl::renderer::create(world, o);
+  if (!r) {
+    std::fprintf(stderr, "engine_gl: %s\n", r.error().c_str());
+    return 1;
+  }
+  (*r)->render(world.view, [&](const dstrans::scheduled_pass& pass) {
+    for (const bool hair : {false, true})  // surfaces first, as dstrans orders them
+      for (const drawn_mesh& m : meshes) {
+        if (m.hair != hair || (pass.draws == dstrans::geometry_set::surfaces && m.hair) ||
+            (pass.draws == dstrans::geometry_set::hair && !m.hair))
+          continue;
+        glVertexAttribI4ui(2, m.material, 0, 0, 0);
+        glBindVertexArray(m.shape.vao);
+        glDrawElements(GL_TRIANGLES, m.shape.count, GL_UNSIGNED_INT, nullptr);
+      }
+  });
+  std::vector<unsigned char> pixels;  // RGBA8, rows from the top
+  for (const dstrans::texel& t : dstrans::gl::read_texels((*r)->output(), 0)) pixels.insert(pixels.end(), t.begin(), t.begin() + 4);
+  for (drawn_mesh& m : meshes) {
+    glDeleteVertexArrays(1, &m.shape.vao);
+    glDeleteBuffers(1, &m.shape.vbo);
+    glDeleteBuffers(1, &m.shape.ibo);
+  }
+  std::string error;
+  if (!example::write_png(out, w, h, pixels.data(), false, error)) {
+    std::fprintf(stderr, "engine_gl: %s\n", error.c_str());
+    return 1;
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
-  const char* const usage = "usage: engine_gl [--step 0|1|2|3] [--out image.png]\n";
+  const char* const usage = "usage: engine_gl [--step 0|1|2|3|4] [--out image.png]\n";
   int step = 3;
   std::string out = "engine_gl.png";
   if (const int stop = example::engine_arguments(argc, argv, "engine_gl", usage, step, out); stop >= 0) return stop;
@@ -384,6 +439,12 @@ int main(int argc, char** argv) {
   }
   using namespace engine;
   const int w = 320, h = 180, shadow_size = 512;
+  if (step == 4) {
+    const int rc = whole_frame(out, w, h);
+    for (const std::string& m : (*context)->debug_messages()) std::fprintf(stderr, "engine_gl: GL: %s\n", m.c_str());
+    if (rc == 0) std::printf("engine_gl: step 4: %s\n", out.c_str());
+    return rc;
+  }
 
   // The world: a floor, a red box, a blue and a green pane of glass, a spot light.
   std::vector<object> world{

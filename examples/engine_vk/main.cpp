@@ -4,8 +4,10 @@
 //   --step 1  dstrans's G-buffer layout (Table 3.1) and interlaced transparency
 //   --step 2  + coloured shadows from the glass (Table 3.3 shadow map, Eq. 3.1)
 //   --step 3  + refraction with depth rejection (Eq. 3.3)
-// dstrans brings GLSL text and, as the engine's shader compiler, dstrans_spirv (glslang); the engine's
-// Vulkan objects are its own. --validate turns the Khronos validation layer on; any message fails the run.
+//   --step 4  the whole frame through dstrans's renderer (dstrans_vk_frame.hpp), with hair, smoke and a
+//             post chain, recorded into the engine's command buffer, the engine drawing its own buffers
+// Up to step 3 dstrans brings GLSL text and, as the engine's shader compiler, dstrans_spirv (glslang); the
+// engine's Vulkan objects are its own. --validate turns the Khronos validation layer on; any message fails the run.
 //
 //   engine_vk --step 3 --out step3.png --validate
 #include <cstdio>
@@ -21,7 +23,9 @@
 
 #include <dstrans/dstrans.hpp>
 #include <dstrans_spirv.hpp>
+#include <dstrans_vk_frame.hpp>  // [step 4] the whole frame
 
+#include "../engine_world.hpp"
 #include "../example_io.hpp"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION  // stb_image_write.h's definitions, here once
@@ -101,8 +105,12 @@ gpu open_gpu(bool validate) {
   VkPhysicalDeviceVulkan13Features v13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   v13.dynamicRendering = VK_TRUE;
   v13.synchronization2 = VK_TRUE;
+  VkPhysicalDeviceFeatures features{};
+  features.depthClamp = VK_TRUE;               // [step 4] dstrans draws light volumes depth-clamped
+  features.fragmentStoresAndAtomics = VK_TRUE;  // [step 4] and fills the k-buffer from fragments
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &v13;
+  dci.pEnabledFeatures = &features;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &q;
   CHECK_VK(vkCreateDevice(g.physical, &dci, nullptr, &g.device));
@@ -569,16 +577,127 @@ struct object_constants {
 
 }  // namespace engine
 
+namespace engine {
+
+// Frees the engine's memory and closes its device and instance.
+void close_gpu(gpu& g, allocator& mem) {
+  for (const allocator::block& b : mem.blocks) vkFreeMemory(g.device, b.memory, nullptr);
+  vkDestroyCommandPool(g.device, g.pool, nullptr);
+  vkDestroyDevice(g.device, nullptr);
+  if (g.messenger) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(g.instance, "vkDestroyDebugUtilsMessengerEXT"));
+    destroy(g.instance, g.messenger, nullptr);
+  }
+  vkDestroyInstance(g.instance, nullptr);
+}
+
+// [step 4] The whole frame: dstrans's renderer, made on the engine's instance, device and queue, records
+// every pass into the engine's command buffer, which the engine submits. The engine hands it a description
+// of the world and its vertex layout (position and normal interleaved at binding 0, the material an
+// instance-rate stream at binding 1), and draws its own buffers when a geometry pass asks.
+bool whole_frame(const gpu& g, allocator& mem, const std::string& out, int w, int h) {
+  const dstrans::scene world = example::engine_world();
+  const dstrans::vk::context ctx{g.instance, g.physical, g.device, g.queue, g.family, nullptr, g.messenger != VK_NULL_HANDLE};
+  auto dev = dstrans::vk::device::create(ctx);
+  if (!dev) {
+    std::fprintf(stderr, "engine_vk: %s\n", dev.error().c_str());
+    return false;
+  }
+  struct drawn_mesh {
+    mesh shape;
+    uint32_t material;
+    bool hair;
+  };
+  std::vector<drawn_mesh> meshes;
+  for (const dstrans::object& o : world.objects) {
+    std::vector<vertex> v;
+    for (const example::world_vertex& p : example::world_vertices(world, o)) v.push_back({p.position, p.normal});
+    meshes.push_back({upload(g, mem, v, o.geometry.indices), o.material, world.materials[o.material].hair});
+  }
+  std::vector<uint32_t> material_ids(world.materials.size());
+  for (uint32_t k = 0; k < material_ids.size(); ++k) material_ids[k] = k;
+  const buffer materials = make_buffer(g, mem, material_ids.size() * sizeof(uint32_t), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  std::memcpy(materials.mapped, material_ids.data(), material_ids.size() * sizeof(uint32_t));
+  dstrans::vk::vertex_input layout;
+  layout.bindings = {{0, sizeof(vertex), VK_VERTEX_INPUT_RATE_VERTEX}, {1, sizeof(uint32_t), VK_VERTEX_INPUT_RATE_INSTANCE}};
+  layout.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(offsetof(vertex, position))},
+                       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(offsetof(vertex, normal))},
+                       {2, 1, VK_FORMAT_R32_UINT, 0}};
+  dstrans::render::options o;  // as dstrans render draws a scene
+  o.width = w;
+  o.height = h;
+  o.shadow_size = 1024;
+  auto r = dstrans::vk::renderer::create(**dev, world, o, dstrans::pass_shaders(), layout);
+  bool written = false;
+  if (!r) {
+    std::fprintf(stderr, "engine_vk: %s\n", r.error().c_str());
+  } else {
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = g.pool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    CHECK_VK(vkAllocateCommandBuffers(g.device, &ai, &cmd));
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    CHECK_VK(vkBeginCommandBuffer(cmd, &bi));
+    (*r)->record(cmd, world.view, [&](VkCommandBuffer c, const dstrans::scheduled_pass& pass) {
+      for (const bool hair : {false, true})  // surfaces first, as dstrans orders them
+        for (const drawn_mesh& m : meshes) {
+          if (m.hair != hair || (pass.draws == dstrans::geometry_set::surfaces && m.hair) ||
+              (pass.draws == dstrans::geometry_set::hair && !m.hair))
+            continue;
+          const VkBuffer streams[] = {m.shape.vertices.handle, materials.handle};
+          const VkDeviceSize offsets[] = {0, VkDeviceSize(m.material) * sizeof(uint32_t)};  // instance 0 reads its material
+          vkCmdBindVertexBuffers(c, 0, 2, streams, offsets);
+          vkCmdBindIndexBuffer(c, m.shape.indices.handle, 0, VK_INDEX_TYPE_UINT32);
+          vkCmdDrawIndexed(c, m.shape.count, 1, 0, 0, 0);
+        }
+    });
+    CHECK_VK(vkEndCommandBuffer(cmd));
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    CHECK_VK(vkQueueSubmit(g.queue, 1, &si, VK_NULL_HANDLE));
+    CHECK_VK(vkQueueWaitIdle(g.queue));
+    auto texels = (*dev)->read_texels((*r)->output(), 0);
+    std::vector<unsigned char> pixels;  // RGBA8, rows from the top
+    if (texels)
+      for (const dstrans::texel& t : *texels) pixels.insert(pixels.end(), t.begin(), t.begin() + 4);
+    std::string error;
+    written = texels && example::write_png(out, w, h, pixels.data(), false, error);
+    if (!written) std::fprintf(stderr, "engine_vk: %s\n", texels ? error.c_str() : texels.error().c_str());
+    vkFreeCommandBuffers(g.device, g.pool, 1, &cmd);
+  }
+  r = dstrans::failure{"closed"};  // the renderer goes before the device it was made on
+  for (const drawn_mesh& m : meshes) {
+    vkDestroyBuffer(g.device, m.shape.vertices.handle, nullptr);
+    vkDestroyBuffer(g.device, m.shape.indices.handle, nullptr);
+  }
+  vkDestroyBuffer(g.device, materials.handle, nullptr);
+  return written;
+}
+
+}  // namespace engine
+
 int main(int argc, char** argv) {
   int step = 3;
   bool validate = false;
   std::string out = "engine_vk.png";
-  const char* const usage = "usage: engine_vk [--step 0|1|2|3] [--out image.png] [--validate]\n";
+  const char* const usage = "usage: engine_vk [--step 0|1|2|3|4] [--out image.png] [--validate]\n";
   if (const int stop = example::engine_arguments(argc, argv, "engine_vk", usage, step, out, &validate); stop >= 0) return stop;
   using namespace engine;
   const int w = 320, h = 180, shadow_size = 512;
   gpu g = open_gpu(validate);
   allocator mem{&g, {}};
+  if (step == 4) {
+    const bool written = whole_frame(g, mem, out, w, h);
+    close_gpu(g, mem);
+    if (validation_messages) std::fprintf(stderr, "engine_vk: %d validation messages\n", validation_messages);
+    if (!written || validation_messages) return 1;
+    std::printf("engine_vk: step 4: %s\n", out.c_str());
+    return 0;
+  }
   const bool dstrans_gbuffer = step >= 1, shadows = step >= 2;
 
   // The world (the same as engine_gl's).
@@ -854,15 +973,7 @@ int main(int argc, char** argv) {
   std::vector<VkBuffer> buffers{ubo.handle, readback.handle};
   for (const object& o : world) buffers.insert(buffers.end(), {o.shape.vertices.handle, o.shape.indices.handle});
   for (VkBuffer b : buffers) vkDestroyBuffer(g.device, b, nullptr);
-  for (const allocator::block& b : mem.blocks) vkFreeMemory(g.device, b.memory, nullptr);
-  vkDestroyCommandPool(g.device, g.pool, nullptr);
-  vkDestroyDevice(g.device, nullptr);
-  if (g.messenger) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(g.instance, "vkDestroyDebugUtilsMessengerEXT"));
-    destroy(g.instance, g.messenger, nullptr);
-  }
-  vkDestroyInstance(g.instance, nullptr);
+  close_gpu(g, mem);
   if (validation_messages) {
     std::fprintf(stderr, "engine_vk: %d validation messages\n", validation_messages);
     return 1;

@@ -2,7 +2,7 @@
 # the one before: cmake -DEXE=engine_gl -DWORK=dir [-DARGS=--validate] [-DFILTER=leak_filter.sh] -P engine_steps.cmake
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-foreach(step 0 1 2 3)
+foreach(step 0 1 2 3 4)
   execute_process(COMMAND ${FILTER} ${EXE} ${ARGS} --step ${step} --out ${WORK}/step${step}.png RESULT_VARIABLE rc OUTPUT_VARIABLE out
                   ERROR_VARIABLE err)
   if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/step${step}.png OR "${err}" MATCHES "GL:|validation")
