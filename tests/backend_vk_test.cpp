@@ -3,6 +3,8 @@
 // message fails the test. Skips with a message without a Vulkan device.
 #include <catch2/catch.hpp>
 
+#include <cstring>
+
 #include <dstrans_vk.hpp>
 #include <dstrans_vk_device.hpp>
 
@@ -229,4 +231,41 @@ TEST_CASE("VK: many timed passes go in one submission, each timed, and no more t
   auto over = dev.submit_passes();
   CHECK(over.error() == "2 passes were recorded into a submission begun for 1");
   dev.destroy(*t);
+}
+
+TEST_CASE("VK: images and buffers are slices of shared memory blocks, each freed with its last slice", "[vk]") {
+  vk_fixture fx;
+  if (!open(fx)) return;
+  vk::device& dev = *fx.dev;
+  const std::size_t before = dev.memory_blocks();
+  std::vector<vk::buffer> buffers;
+  for (int k = 0; k < 20; ++k) {
+    auto b = dev.make_buffer(1000, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "slice");
+    REQUIRE(b);
+    buffers.push_back(*b);
+  }
+  CHECK(dev.memory_blocks() == before + 1);
+  for (std::size_t k = 1; k < buffers.size(); ++k) {
+    CHECK(buffers[k].memory == buffers[0].memory);
+    CHECK(buffers[k].slice.offset >= buffers[k - 1].slice.offset + 1000);  // no two overlap
+    std::memset(buffers[k].mapped, int(k), 1000);                          // each its own mapped bytes
+  }
+  CHECK(static_cast<unsigned char*>(buffers[5].mapped)[999] == 5);
+  auto t = dev.make_targets({target_desc{format::rgba8, {"r", "g", "b", "a"}}, target_desc{format::r32f, {"depth"}}}, 64, 64, "slices", true);
+  REQUIRE(t);
+  CHECK(dev.memory_blocks() == before + 2);  // images apart from buffers
+  CHECK(t->colors[0].memory == t->colors[1].memory);
+  // A freed slice is taken again; the blocks go when their last slice does.
+  const VkDeviceSize freed = buffers[3].slice.offset;
+  dev.destroy(buffers[3]);
+  auto again = dev.make_buffer(1000, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "slice again");
+  REQUIRE(again);
+  CHECK(again->slice.offset == freed);
+  buffers[3] = *again;
+  for (vk::buffer& b : buffers) dev.destroy(b);
+  CHECK(dev.memory_blocks() == before + 1);
+  auto texels = dev.read_texels(*t, 0);  // the images still work
+  CHECK(texels);
+  dev.destroy(*t);
+  CHECK(dev.memory_blocks() == before);
 }

@@ -1,7 +1,9 @@
 // Implements dstrans_vk.hpp.
 #include "dstrans_vk.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <iterator>
 
 namespace dstrans::vk {
 
@@ -110,6 +112,7 @@ device::~device() {
   if (timestamps_) vkDestroyQueryPool(ctx_.device, timestamps_, ctx_.allocator);
   if (fence_) vkDestroyFence(ctx_.device, fence_, ctx_.allocator);
   if (pool_) vkDestroyCommandPool(ctx_.device, pool_, ctx_.allocator);
+  for (auto& [id, b] : blocks_) vkFreeMemory(ctx_.device, b.memory, ctx_.allocator);  // what was not destroyed
 }
 
 void device::name(VkObjectType type, std::uint64_t handle, const std::string& text) {
@@ -119,6 +122,68 @@ void device::name(VkObjectType type, std::uint64_t handle, const std::string& te
   info.objectHandle = handle;
   info.pObjectName = text.c_str();
   set_name_(ctx_.device, &info);
+}
+
+std::size_t device::memory_blocks() const { return blocks_.size(); }
+
+result<allocation> device::take(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, bool linear) {
+  auto type = memory_type(req.memoryTypeBits, flags);
+  if (!type) return failure{type.error()};
+  const VkDeviceSize align = std::max<VkDeviceSize>(req.alignment, 1);
+  // First fit in a block of the same kind: a free range that holds the aligned slice.
+  for (auto& [id, b] : blocks_) {
+    if (b.type != *type || b.linear != linear) continue;
+    for (auto it = b.free.begin(); it != b.free.end(); ++it) {
+      const VkDeviceSize start = (it->first + align - 1) / align * align, end = it->first + it->second;
+      if (start + req.size > end) continue;
+      const VkDeviceSize before = start - it->first, after = end - (start + req.size), from = it->first;
+      b.free.erase(it);
+      if (before) b.free[from] = before;
+      if (after) b.free[start + req.size] = after;
+      return allocation{id, start, req.size};
+    }
+  }
+  constexpr VkDeviceSize block_size = VkDeviceSize(64) << 20;
+  memory_block b;
+  b.type = *type;
+  b.linear = linear;
+  b.size = std::max(block_size, req.size);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = b.size;
+  ai.memoryTypeIndex = b.type;
+  if (vkAllocateMemory(ctx_.device, &ai, ctx_.allocator, &b.memory) != VK_SUCCESS) return failure{"out of device memory"};
+  if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) vkMapMemory(ctx_.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped);
+  if (req.size < b.size) b.free[req.size] = b.size - req.size;
+  const std::uint32_t id = next_block_++;
+  blocks_[id] = std::move(b);
+  return allocation{id, 0, req.size};
+}
+
+void device::release(allocation& a) {
+  const auto it = blocks_.find(a.block);
+  if (it == blocks_.end()) return;
+  memory_block& b = it->second;
+  VkDeviceSize offset = a.offset, size = a.size;
+  // Coalesce with the free ranges on either side.
+  auto next = b.free.lower_bound(offset);
+  if (next != b.free.end() && next->first == offset + size) {
+    size += next->second;
+    next = b.free.erase(next);
+  }
+  if (next != b.free.begin()) {
+    auto prev = std::prev(next);
+    if (prev->first + prev->second == offset) {
+      offset = prev->first;
+      size += prev->second;
+      b.free.erase(prev);
+    }
+  }
+  b.free[offset] = size;
+  if (offset == 0 && size == b.size) {
+    vkFreeMemory(ctx_.device, b.memory, ctx_.allocator);
+    blocks_.erase(it);
+  }
+  a = allocation{};
 }
 
 result<std::uint32_t> device::memory_type(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
@@ -147,15 +212,14 @@ result<image> device::make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageA
   if (vkCreateImage(ctx_.device, &ci, ctx_.allocator, &img.handle) != VK_SUCCESS) return failure{label + ": cannot create the image"};
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(ctx_.device, img.handle, &req);
-  auto type = memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  ai.allocationSize = req.size;
-  ai.memoryTypeIndex = type ? *type : 0u;
-  if (!type || vkAllocateMemory(ctx_.device, &ai, ctx_.allocator, &img.memory) != VK_SUCCESS) {
+  auto slice = take(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, false);
+  if (!slice) {
     destroy(img);
-    return failure{label + ": cannot allocate the image's memory"};
+    return failure{label + ": cannot allocate the image's memory (" + slice.error() + ")"};
   }
-  vkBindImageMemory(ctx_.device, img.handle, img.memory, 0);
+  img.slice = *slice;
+  img.memory = blocks_.at(slice->block).memory;
+  vkBindImageMemory(ctx_.device, img.handle, img.memory, slice->offset);
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vi.image = img.handle;
   vi.viewType = view_type;
@@ -170,7 +234,7 @@ result<image> device::make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageA
 void device::destroy(image& i) {
   if (i.view) vkDestroyImageView(ctx_.device, i.view, ctx_.allocator);
   if (i.handle) vkDestroyImage(ctx_.device, i.handle, ctx_.allocator);
-  if (i.memory) vkFreeMemory(ctx_.device, i.memory, ctx_.allocator);
+  release(i.slice);
   i = image{};
 }
 
@@ -331,23 +395,23 @@ result<buffer> device::make_buffer(VkDeviceSize size, VkBufferUsageFlags usage, 
   if (vkCreateBuffer(ctx_.device, &ci, ctx_.allocator, &b.handle) != VK_SUCCESS) return failure{label + ": cannot create the buffer"};
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx_.device, b.handle, &req);
-  auto type = memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  ai.allocationSize = req.size;
-  ai.memoryTypeIndex = type ? *type : 0u;
-  if (!type || vkAllocateMemory(ctx_.device, &ai, ctx_.allocator, &b.memory) != VK_SUCCESS) {
+  auto slice = take(req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, true);
+  if (!slice) {
     destroy(b);
-    return failure{label + ": cannot allocate host-visible memory"};
+    return failure{label + ": cannot allocate host-visible memory (" + slice.error() + ")"};
   }
-  vkBindBufferMemory(ctx_.device, b.handle, b.memory, 0);
-  vkMapMemory(ctx_.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped);
+  b.slice = *slice;
+  const memory_block& block = blocks_.at(slice->block);
+  b.memory = block.memory;
+  b.mapped = static_cast<char*>(block.mapped) + slice->offset;
+  vkBindBufferMemory(ctx_.device, b.handle, b.memory, slice->offset);
   name(VK_OBJECT_TYPE_BUFFER, std::uint64_t(b.handle), label);
   return b;
 }
 
 void device::destroy(buffer& b) {
   if (b.handle) vkDestroyBuffer(ctx_.device, b.handle, ctx_.allocator);
-  if (b.memory) vkFreeMemory(ctx_.device, b.memory, ctx_.allocator);
+  release(b.slice);
   b = buffer{};
 }
 

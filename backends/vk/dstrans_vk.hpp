@@ -43,11 +43,18 @@ struct context {
   bool debug_utils = false;  // VK_EXT_debug_utils is enabled on the instance: dstrans names its objects
 };
 
+// Where an image's or a buffer's memory lies: a slice of one of the device's blocks (block 0: none).
+struct allocation {
+  std::uint32_t block = 0;
+  VkDeviceSize offset = 0, size = 0;
+};
+
 struct image {
   VkImage handle = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;  // the block it lies in
   VkImageView view = VK_NULL_HANDLE;
   VkFormat format = VK_FORMAT_UNDEFINED;
+  allocation slice;
 };
 
 // One image per layout target (usable as colour attachment, sampled image and copy source), an optional
@@ -62,9 +69,10 @@ struct targets {
 // A host-visible, coherent, persistently mapped buffer.
 struct buffer {
   VkBuffer handle = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;  // the block it lies in
   VkDeviceSize size = 0;
   void* mapped = nullptr;
+  allocation slice;
 };
 
 struct shader {
@@ -98,7 +106,10 @@ struct pipeline {
 
 class device {
  public:
-  // dstrans's objects on the engine's device: a command pool, a fence, a shader cache.
+  // dstrans's objects on the engine's device: a command pool, a fence, a shader cache, and the memory
+  // blocks its images and buffers are slices of (64 MiB each, or one for a larger resource; images and
+  // buffers in blocks of their own, so that no slice needs bufferImageGranularity's padding; a block is
+  // freed when its last slice is).
   static result<std::unique_ptr<device>> create(const context& ctx);
   ~device();
   device(const device&) = delete;
@@ -156,6 +167,9 @@ class device {
   void begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear);
   void end_rendering(VkCommandBuffer cmd);
 
+  // How many memory blocks (vkAllocateMemory calls) the device holds now.
+  std::size_t memory_blocks() const;
+
   // Names a Vulkan object for frame captures and validation messages (VK_EXT_debug_utils, when enabled).
   void name(VkObjectType type, std::uint64_t handle, const std::string& text);
 
@@ -167,6 +181,17 @@ class device {
   result<words> run_dispatch(const pipeline& p, const formula& f, const words& args, std::size_t calls);
   explicit device(const context& ctx) : ctx_(ctx) {}
   result<std::uint32_t> memory_type(std::uint32_t bits, VkMemoryPropertyFlags flags) const;
+  // A slice for `req` in a block of memory with `flags` (mapped if host-visible); `linear`: for a buffer.
+  result<allocation> take(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, bool linear);
+  void release(allocation& a);
+  struct memory_block {
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    std::uint32_t type = 0;
+    bool linear = false;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr;
+    std::map<VkDeviceSize, VkDeviceSize> free;  // offset to size, coalesced
+  };
   result<std::vector<std::uint8_t>> read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height);
   result<image> make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
                            const std::string& label, VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_2D,
@@ -187,6 +212,8 @@ class device {
   PFN_vkCmdEndRendering end_rendering_ = nullptr;
   std::map<std::uint64_t, std::unique_ptr<shader>> shaders_;
   std::map<std::string, pipeline> formula_pipelines_;
+  std::map<std::uint32_t, memory_block> blocks_;  // by id, from 1
+  std::uint32_t next_block_ = 1;
 };
 
 }  // namespace dstrans::vk

@@ -15,7 +15,7 @@
 //   glm::vec3 colour = dstrans::shader::dst_compose(opaque, light_o, transparent, light_t, ambient);
 //   glm::vec3 same = dstrans::shader::dst_blend(lit_opaque, lit_transparent, alpha_t);   // colours already lit
 //
-// Choices (the cases of tests/hard_cases.jsonl): screen y grows downwards while view y grows upwards, so
+// Choices (each one of the project's tested hard cases): screen y grows downwards while view y grows upwards, so
 // the offset's y is negated; the offset rounds to the nearest pixel, halves up (GLSL's round() may go
 // either way); a sample pushed off the image is taken at its edge (clamped per axis), a NaN offset does
 // not move it; equal depths are not rejected (a surface does not leak into itself); when the moved pixel

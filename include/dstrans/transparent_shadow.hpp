@@ -10,7 +10,7 @@
 //
 //   glm::vec3 lit = dstrans::shader::dst_transparent_shadow(light, d_p, bias, depth_a, occluder_a, depth_b, occluder_b);
 //
-// Choices, each a case of tests/hard_cases.jsonl:
+// Choices, each one of the project's tested hard cases:
 // - equal alphas make the texel itself the transparent candidate;
 // - two opaque samples (both alphas 1): the texel alone decides, as a plain shadow map does. The partner
 //   is a neighbour's surface, not a layer behind this one; taking its depth as d_maxA would grow every

@@ -63,7 +63,7 @@ std::uint32_t kbuffer_capacity(const options& o);
 std::size_t frame_bytes(const frame_plan& p, const options& o);
 std::vector<target_desc> kbuffer_tail_targets();
 
-// Light volumes (light_volumes, TECHNIQUES.md S2). The bake of options' basis: all unshadowed lights
+// Light volumes (light_volumes: baked lighting for particles, light_volume.hpp). The bake of options' basis: all unshadowed lights
 // (`shadows` off), or one shadowed spot light reading the shadow map of kind `shadows` through the
 // bake's shadow hook. The particle pass: lit from the atlas, or (options::particle_light::forward) by
 // every light, reading the shadow maps' copies in layers.
