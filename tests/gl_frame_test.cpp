@@ -8,26 +8,14 @@
 
 #include <dstrans_gl_context.hpp>
 #include <dstrans_gl_frame.hpp>
-#include <scene_json.hpp>
+#include "frame_scenes.hpp"
 
 using namespace dstrans;
 
 namespace {
 
-scene example(const std::string& file) {
-  auto s = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/" + file);
-  INFO(s.error());
-  REQUIRE(s);
-  return *s;
-}
-
-render::options sized(int w, int h) {
-  render::options o;
-  o.width = w;
-  o.height = h;
-  o.shadow_size = 256;
-  return o;
-}
+using frame_tests::example;
+using frame_tests::sized;
 
 std::unique_ptr<gl::renderer> make(const scene& s, const render::options& o) {
   auto r = gl::renderer::create(s, o, pass_shaders());  // the shaders live only as long as the call

@@ -9,26 +9,14 @@
 
 #include <dstrans_vk_device.hpp>
 #include <dstrans_vk_frame.hpp>
-#include <scene_json.hpp>
+#include "frame_scenes.hpp"
 
 using namespace dstrans;
 
 namespace {
 
-scene example(const std::string& file) {
-  auto s = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/" + file);
-  INFO(s.error());
-  REQUIRE(s);
-  return *s;
-}
-
-render::options sized(int w, int h) {
-  render::options o;
-  o.width = w;
-  o.height = h;
-  o.shadow_size = 256;
-  return o;
-}
+using frame_tests::example;
+using frame_tests::sized;
 
 // The engine's side: its device, a command pool, and a command buffer and fence a frame in flight.
 struct engine {

@@ -579,6 +579,16 @@ struct object_constants {
 
 namespace engine {
 
+// Ends `cmd`, submits it to the engine's queue and waits until it is done.
+void submit_and_wait(const gpu& g, VkCommandBuffer cmd) {
+  CHECK_VK(vkEndCommandBuffer(cmd));
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  CHECK_VK(vkQueueSubmit(g.queue, 1, &si, VK_NULL_HANDLE));
+  CHECK_VK(vkQueueWaitIdle(g.queue));
+}
+
 // Frees the engine's memory and closes its device and instance.
 void close_gpu(gpu& g, allocator& mem) {
   for (const allocator::block& b : mem.blocks) vkFreeMemory(g.device, b.memory, nullptr);
@@ -654,12 +664,7 @@ bool whole_frame(const gpu& g, allocator& mem, const std::string& out, int w, in
           vkCmdDrawIndexed(c, m.shape.count, 1, 0, 0, 0);
         }
     });
-    CHECK_VK(vkEndCommandBuffer(cmd));
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    CHECK_VK(vkQueueSubmit(g.queue, 1, &si, VK_NULL_HANDLE));
-    CHECK_VK(vkQueueWaitIdle(g.queue));
+    submit_and_wait(g, cmd);
     auto texels = (*dev)->read_texels((*r)->output(), 0);
     std::vector<unsigned char> pixels;  // RGBA8, rows from the top
     if (texels)
@@ -669,7 +674,6 @@ bool whole_frame(const gpu& g, allocator& mem, const std::string& out, int w, in
     if (!written) std::fprintf(stderr, "engine_vk: %s\n", texels ? error.c_str() : texels.error().c_str());
     vkFreeCommandBuffers(g.device, g.pool, 1, &cmd);
   }
-  r = dstrans::failure{"closed"};  // the renderer goes before the device it was made on
   for (const drawn_mesh& m : meshes) {
     vkDestroyBuffer(g.device, m.shape.vertices.handle, nullptr);
     vkDestroyBuffer(g.device, m.shape.indices.handle, nullptr);
@@ -946,12 +950,7 @@ int main(int argc, char** argv) {
   copy.imageExtent = {uint32_t(w), uint32_t(h), 1};
   vkCmdCopyImageToBuffer(cmd, final_image.handle, VK_IMAGE_LAYOUT_GENERAL, readback.handle, 1, &copy);
   barrier({});
-  CHECK_VK(vkEndCommandBuffer(cmd));
-  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  si.commandBufferCount = 1;
-  si.pCommandBuffers = &cmd;
-  CHECK_VK(vkQueueSubmit(g.queue, 1, &si, VK_NULL_HANDLE));
-  CHECK_VK(vkQueueWaitIdle(g.queue));
+  submit_and_wait(g, cmd);
   std::string error;
   const bool written = example::write_png(out, w, h, readback.mapped, false, error);
   if (!written) std::fprintf(stderr, "engine_vk: %s\n", error.c_str());
