@@ -76,7 +76,7 @@ struct engine {
   }
   void idle() { vkDeviceWaitIdle(hd->ctx().device); }
   std::vector<texel> shown(const vk::renderer& r) {
-    auto t = dev->read_texels(r.output(), 0);
+    auto t = dev->read_texels(r.output(), 0, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     INFO(t.error());
     REQUIRE(t);
     return *t;

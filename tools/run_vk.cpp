@@ -19,7 +19,7 @@ result<bool> read_back(vk::device& dev, const vk::renderer& r, const scene& s, f
   const frame_plan& plan = r.plan();
   const int w = o.width, h = o.height;
   auto texels = [&](const vk::targets& from, int index, std::vector<texel>& into) -> result<bool> {
-    auto got = dev.read_texels(from, index);
+    auto got = dev.read_texels(from, index, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     if (!got) return failure{got.error()};
     into = *got;
     return true;

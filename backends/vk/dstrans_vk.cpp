@@ -335,13 +335,14 @@ void device::destroy(targets& t) {
   t = targets{};
 }
 
-result<std::vector<std::uint8_t>> device::read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height) {
+result<std::vector<std::uint8_t>> device::read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height,
+                                                    VkImageLayout current) {
   const std::size_t n = std::size_t(width) * std::size_t(height) * bytes_per_pixel;
   auto staging = make_buffer(VkDeviceSize(n), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "dstrans readback");
   if (!staging) return failure{staging.error()};
   submit([&](VkCommandBuffer cmd) {
-    // Copies want TRANSFER_SRC_OPTIMAL; the image returns to GENERAL, where dstrans keeps it.
-    VkImageMemoryBarrier before = image_barrier(img, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+    // Copies want TRANSFER_SRC_OPTIMAL; the image returns to the layout it was in.
+    VkImageMemoryBarrier before = image_barrier(img, current, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                                 VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT,
                                                 VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
@@ -350,7 +351,7 @@ result<std::vector<std::uint8_t>> device::read_image(VkImage img, std::size_t by
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {std::uint32_t(width), std::uint32_t(height), 1};
     vkCmdCopyImageToBuffer(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging->handle, 1, &region);
-    VkImageMemoryBarrier after = image_barrier(img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+    VkImageMemoryBarrier after = image_barrier(img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, current,
                                                VK_ACCESS_TRANSFER_READ_BIT, 0, VK_IMAGE_ASPECT_COLOR_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr,
                          1, &after);
@@ -369,9 +370,9 @@ result<std::vector<std::uint8_t>> device::read_image(VkImage img, std::size_t by
   return out;
 }
 
-result<std::vector<texel>> device::read_texels(const targets& t, int index) {
+result<std::vector<texel>> device::read_texels(const targets& t, int index, VkImageLayout current) {
   const std::size_t bpp = std::size_t(info(t.formats[std::size_t(index)]).bytes_per_pixel);
-  auto bytes = read_image(t.colors[std::size_t(index)].handle, bpp, t.width, t.height);
+  auto bytes = read_image(t.colors[std::size_t(index)].handle, bpp, t.width, t.height, current);
   if (!bytes) return failure{bytes.error()};
   std::vector<texel> out(std::size_t(t.width) * std::size_t(t.height));
   for (std::size_t i = 0; i < out.size(); ++i) std::memcpy(out[i].data(), bytes->data() + i * bpp, bpp);
@@ -379,7 +380,7 @@ result<std::vector<texel>> device::read_texels(const targets& t, int index) {
 }
 
 result<std::vector<std::uint32_t>> device::read_words(const image& img, int width, int height) {
-  auto bytes = read_image(img.handle, 4, width, height);
+  auto bytes = read_image(img.handle, 4, width, height, VK_IMAGE_LAYOUT_GENERAL);
   if (!bytes) return failure{bytes.error()};
   std::vector<std::uint32_t> out(bytes->size() / 4);
   std::memcpy(out.data(), bytes->data(), bytes->size());
@@ -636,12 +637,12 @@ result<std::vector<double>> device::submit_passes() {
   return out;
 }
 
-void device::begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear) {
+void device::begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear, bool optimal) {
   std::vector<VkRenderingAttachmentInfo> colors;
   for (std::size_t i = 0; i < t.colors.size(); ++i) {
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     a.imageView = t.colors[i].view;
-    a.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+    a.imageLayout = optimal ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL;
     a.loadOp = i < clear.size() ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
     a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     if (i < clear.size())
@@ -650,7 +651,7 @@ void device::begin_rendering(VkCommandBuffer cmd, const targets& t, const std::v
   }
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   depth.imageView = t.depth.view;
-  depth.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+  depth.imageLayout = optimal ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL;
   depth.loadOp = clear.empty() ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
   depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   depth.clearValue.depthStencil = {1.0f, 0};

@@ -122,8 +122,9 @@ class device {
   result<targets> make_targets(const std::vector<target_desc>& layout, int width, int height, const std::string& label,
                                bool with_depth);
   void destroy(targets& t);
-  // The bytes of target `index`, row by row from the top of the image.
-  result<std::vector<texel>> read_texels(const targets& t, int index);
+  // The bytes of target `index`, row by row from the top of the image, which is in layout `current` and
+  // returns to it (a renderer leaves its targets in SHADER_READ_ONLY_OPTIMAL).
+  result<std::vector<texel>> read_texels(const targets& t, int index, VkImageLayout current = VK_IMAGE_LAYOUT_GENERAL);
 
   result<buffer> make_buffer(VkDeviceSize size, VkBufferUsageFlags usage, const std::string& label);
   void destroy(buffer& b);
@@ -163,8 +164,9 @@ class device {
 
   // Starts dynamic rendering into all of `t`, with a viewport of negative height so that clip-space +y
   // is the image's top row, as with GL's glClipControl(GL_UPPER_LEFT): one projection matrix serves both
-  // APIs. `clear` holds one colour per target (and clears depth to 1); empty loads what is there.
-  void begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear);
+  // APIs. `clear` holds one colour per target (and clears depth to 1); empty loads what is there. The
+  // images are in GENERAL, or with `optimal` in COLOR_ATTACHMENT_OPTIMAL and DEPTH_STENCIL_ATTACHMENT_OPTIMAL.
+  void begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear, bool optimal = false);
   void end_rendering(VkCommandBuffer cmd);
 
   // How many memory blocks (vkAllocateMemory calls) the device holds now.
@@ -192,7 +194,7 @@ class device {
     void* mapped = nullptr;
     std::map<VkDeviceSize, VkDeviceSize> free;  // offset to size, coalesced
   };
-  result<std::vector<std::uint8_t>> read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height);
+  result<std::vector<std::uint8_t>> read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height, VkImageLayout current);
   result<image> make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
                            const std::string& label, VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_2D,
                            int depth_or_layers = 1);

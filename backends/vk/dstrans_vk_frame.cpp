@@ -30,7 +30,7 @@ struct program {
 // What a descriptor set binds: buffers, and sampled or storage images, by binding number.
 struct bindings {
   std::map<int, VkBuffer> buffers;
-  std::map<int, VkImageView> images;
+  std::map<int, const image*> images;
   std::map<int, VkSampler> samplers;  // for sampled images not read with the nearest sampler
 };
 
@@ -63,21 +63,39 @@ void memory_barrier(VkCommandBuffer cmd, access from, access to) {
   vkCmdPipelineBarrier(cmd, from.stages, to.stages, 0, 1, &m, 0, nullptr, 0, nullptr);
 }
 
-// Moves all of `img`'s layers from layout `from` to `to` around a copy, which wants TRANSFER_*_OPTIMAL;
-// between passes the images stay in GENERAL.
-void relayout(VkCommandBuffer cmd, VkImage img, VkImageLayout from, VkImageLayout to) {
-  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
-  b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
-  b.oldLayout = from;
-  b.newLayout = to;
-  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = img;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr, 1, &b);
+// An image a pass uses: the layout it needs the image in, and how the pass reaches it there.
+struct image_use {
+  VkImage handle = VK_NULL_HANDLE;
+  VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+  access at;
+};
+VkImageAspectFlags aspect_of(const image& i) {
+  return i.format == VK_FORMAT_D32_SFLOAT ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 }
-constexpr VkImageLayout general = VK_IMAGE_LAYOUT_GENERAL, copy_from = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                        copy_to = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+image_use attached(const image& i) {
+  if (aspect_of(i) == VK_IMAGE_ASPECT_DEPTH_BIT)
+    return {i.handle, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+            {VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+             VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT}};
+  return {i.handle, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+          {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT}};
+}
+image_use copied(const image& i, bool into) {
+  return {i.handle, VK_IMAGE_ASPECT_COLOR_BIT, into ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+          {VK_PIPELINE_STAGE_TRANSFER_BIT, into ? VK_ACCESS_TRANSFER_WRITE_BIT : VK_ACCESS_TRANSFER_READ_BIT}};
+}
+// Adds `u` unless the pass uses its image already: attachments, added first, win over a sampled binding
+// the shaders declare for the same image and do not read while they draw into it.
+void add_use(std::vector<image_use>& into, const image_use& u) {
+  for (const image_use& have : into)
+    if (have.handle == u.handle) return;
+  into.push_back(u);
+}
+void add_attachments(std::vector<image_use>& into, const vk::targets& t) {
+  for (const image& c : t.colors) add_use(into, attached(c));
+  if (t.depth.handle) add_use(into, attached(t.depth));
+}
 
 VkVertexInputAttributeDescription attribute(std::uint32_t location, std::uint32_t binding, VkFormat f, std::uint32_t offset = 0) {
   return {location, binding, f, offset};
@@ -152,6 +170,14 @@ struct renderer::impl {
     access write, reads;  // the last write, and the reads after it
   };
   std::map<std::string, state> states;
+  // Where an image is: its layout, and every access since it entered it (which its next transition waits for).
+  struct image_state {
+    VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;  // the device makes images in GENERAL
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+    access since;
+  };
+  std::map<VkImage, image_state> layouts;
+  std::vector<std::vector<image_use>> uses;  // by pass: the images it draws into, samples, stores to or copies
 
   ~impl();
   result<compiled> compile(const result<pass_sources>& p, const std::string& name);
@@ -164,11 +190,15 @@ struct renderer::impl {
   result<bool> make_sized();
   void destroy_sized();
   result<bool> make_sets();
-  result<VkDescriptorSet> make_set(const program& p, const bindings& b);
+  result<VkDescriptorSet> make_set(const program& p, const bindings& b, access reads, std::vector<image_use>& used);
+  const vk::targets* attachments(const scheduled_pass& pass) const;
+  std::vector<image_use> copies(const scheduled_pass& pass) const;
   bindings bindings_of(const scheduled_pass& pass, int slot) const;
   const program& program_of(const scheduled_pass& pass) const;
 
-  void barrier(VkCommandBuffer cmd, const scheduled_pass& pass);
+  void barrier(VkCommandBuffer cmd, const scheduled_pass& pass, const std::vector<image_use>& images);
+  void settle(VkCommandBuffer cmd, access from, access to, const std::vector<image_use>& images);
+  void rest(VkCommandBuffer cmd);
   void run(VkCommandBuffer cmd, const scheduled_pass& pass, const std::vector<VkDescriptorSet>& set, int slot, const draw_geometry& draw);
   void copy_shadow_picture(VkCommandBuffer cmd);
 };
@@ -450,6 +480,16 @@ result<bool> renderer::impl::make_sized() {
 }
 
 void renderer::impl::destroy_sized() {
+  // Their handles may come back for other images.
+  auto forget = [&](const vk::targets& t) {
+    for (const image& c : t.colors) layouts.erase(c.handle);
+    layouts.erase(t.depth.handle);
+  };
+  for (const vk::targets* t : {&out.lit, &out.composed, &tail}) forget(*t);
+  for (const vk::targets& t : out.gbuffers) forget(t);
+  for (const vk::targets& t : out.light_buffers) forget(t);
+  for (const auto& [name, t] : out.post) forget(t);
+  layouts.erase(out.kbuffer_heads.handle);
   for (vk::targets* t : {&out.lit, &out.composed, &tail}) dev.destroy(*t);
   for (vk::targets& t : out.gbuffers) dev.destroy(t);
   for (vk::targets& t : out.light_buffers) dev.destroy(t);
@@ -499,51 +539,52 @@ bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const
                {binding(slot::materials), materials.handle},
                {binding(slot::lights), lights.handle}};
   if (pass.step == pass_step::shadow) b.buffers[binding(slot::frame)] = light_blocks_by_light.at(pass.light).handle;
-  for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) b.images[binding(slot::shadow_map) + int(t)] = shadow_map.colors[t].view;
+  for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) b.images[binding(slot::shadow_map) + int(t)] = &shadow_map.colors[t];
   // A G-buffer's images at `first` and up (the compact layout's depth attachment at its depth slot).
   auto add_gbuffer = [&](int first, const vk::targets& g) {
-    for (std::size_t t = 0; t < g.colors.size(); ++t) b.images[first + int(t)] = g.colors[t].view;
-    if (o.layout == gbuffer_layout::compact) b.images[first + gbuffer_depth_slot] = g.depth.view;
+    for (std::size_t t = 0; t < g.colors.size(); ++t) b.images[first + int(t)] = &g.colors[t];
+    if (o.layout == gbuffer_layout::compact) b.images[first + gbuffer_depth_slot] = &g.depth;
   };
   if (!plan.forward) {
     const std::size_t layer = pass.step == pass_step::light ? std::size_t(pass.index) : 0;
     add_gbuffer(binding(slot::gbuffer), out.gbuffers[layer]);
-    b.images[binding(slot::light)] = out.light_buffers[layer].colors[0].view;
-    b.images[binding(slot::peel_depth)] = o.layout == gbuffer_layout::compact ? out.gbuffers[0].depth.view : out.gbuffers[0].colors[3].view;
+    b.images[binding(slot::light)] = &out.light_buffers[layer].colors[0];
+    b.images[binding(slot::peel_depth)] = o.layout == gbuffer_layout::compact ? &out.gbuffers[0].depth : &out.gbuffers[0].colors[3];
   }
   if (plan.peeling) {
     add_gbuffer(binding(slot::gbuffer2), out.gbuffers[1]);
-    b.images[binding(slot::light2)] = out.light_buffers[1].colors[0].view;
+    b.images[binding(slot::light2)] = &out.light_buffers[1].colors[0];
   }
-  for (std::size_t t = 0; t < out.lit.colors.size(); ++t) b.images[binding(slot::forward_lit) + int(t)] = out.lit.colors[t].view;
+  for (std::size_t t = 0; t < out.lit.colors.size(); ++t) b.images[binding(slot::forward_lit) + int(t)] = &out.lit.colors[t];
   if (out.kbuffer_heads.view) {
-    b.images[binding(slot::kbuffer_heads)] = out.kbuffer_heads.view;
+    b.images[binding(slot::kbuffer_heads)] = &out.kbuffer_heads;
     b.buffers[binding(slot::kbuffer_nodes)] = out.kbuffer_nodes.handle;
-    for (int t = 0; t < 2; ++t) b.images[binding(slot::kbuffer_tail) + t] = tail.colors[std::size_t(t)].view;
+    for (int t = 0; t < 2; ++t) b.images[binding(slot::kbuffer_tail) + t] = &tail.colors[std::size_t(t)];
   }
   if (smoke.on) {
     b.buffers[binding(slot::particle_regions)] = regions.handle;
     b.buffers[binding(slot::volume_texels)] = out.volume_texels.handle;
     b.buffers[binding(slot::volume_lights)] = pass.step == pass_step::bake_light ? shadowed_lights.at(pass.light).handle : unshadowed.handle;
     if (atlas.view) {
-      b.images[binding(slot::volume_atlas)] = atlas.view;
+      b.images[binding(slot::volume_atlas)] = &atlas;
       b.samplers[binding(slot::volume_atlas)] = linear_sampler;
     }
     for (int t = 0; t < 2; ++t)
-      if (shadow_layers[t].view) b.images[binding(slot::shadow_layers) + t] = shadow_layers[t].view;
+      if (shadow_layers[t].view) b.images[binding(slot::shadow_layers) + t] = &shadow_layers[t];
   }
   if (pass.step == pass_step::post) {
     const post_pass& p = plan.post.passes[std::size_t(pass.index)];
     b.buffers[binding(slot::post_params)] = post_blocks[std::size_t(pass.index)].handle;
     int input = binding(slot::post_input);
     for (const std::string& in : p.inputs)
-      if (in != "gbuffer") b.images[input++] = in == "frame" ? out.composed.colors[0].view : out.post.at(in).colors[0].view;
+      if (in != "gbuffer") b.images[input++] = in == "frame" ? &out.composed.colors[0] : &out.post.at(in).colors[0];
   }
   return b;
 }
 
-// A descriptor set for `p`, filled from `b` by what its shaders declare.
-result<VkDescriptorSet> renderer::impl::make_set(const program& p, const bindings& b) {
+// A descriptor set for `p`, filled from `b` by what its shaders declare; the images it binds join `used`,
+// sampled ones in SHADER_READ_ONLY_OPTIMAL (read as `reads`), storage ones in GENERAL.
+result<VkDescriptorSet> renderer::impl::make_set(const program& p, const bindings& b, access reads, std::vector<image_use>& used) {
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   ai.descriptorPool = pool;
   ai.descriptorSetCount = 1;
@@ -569,7 +610,11 @@ result<VkDescriptorSet> renderer::impl::make_set(const program& p, const binding
       if (it == b.images.end()) return failure{"nothing bound to image binding " + std::to_string(at)};
       const bool sampled = type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
       const auto own = b.samplers.find(at);
-      image_infos.push_back({!sampled ? VK_NULL_HANDLE : own != b.samplers.end() ? own->second : sampler, it->second, VK_IMAGE_LAYOUT_GENERAL});
+      const image& img = *it->second;
+      const VkImageLayout layout = sampled ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL;
+      const access stored{reads.stages, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+      add_use(used, {img.handle, aspect_of(img), layout, sampled ? reads : stored});
+      image_infos.push_back({!sampled ? VK_NULL_HANDLE : own != b.samplers.end() ? own->second : sampler, img.view, layout});
       w.pImageInfo = &image_infos.back();
     } else {
       const auto it = b.buffers.find(at);
@@ -611,6 +656,11 @@ result<bool> renderer::impl::make_sets() {
   pci.pPoolSizes = sizes;
   if (vkCreateDescriptorPool(dev.ctx().device, &pci, dev.ctx().allocator, &pool) != VK_SUCCESS) return failure{"no descriptor pool"};
   sets.assign(std::size_t(slots), std::vector<std::vector<VkDescriptorSet>>(schedule.passes.size()));
+  uses.assign(schedule.passes.size(), {});
+  for (std::size_t k = 0; k < schedule.passes.size(); ++k) {
+    if (const vk::targets* t = attachments(schedule.passes[k])) add_attachments(uses[k], *t);
+    for (const image_use& u : copies(schedule.passes[k])) add_use(uses[k], u);
+  }
   for (int slot = 0; slot < slots; ++slot)
     for (std::size_t k = 0; k < schedule.passes.size(); ++k) {
       const scheduled_pass& pass = schedule.passes[k];
@@ -619,7 +669,7 @@ result<bool> renderer::impl::make_sets() {
       const std::size_t n = pass.kind == pass_kind::dispatch ? smoke.atlas.regions.size() : 1;
       for (std::size_t r = 0; r < n; ++r) {
         if (pass.kind == pass_kind::dispatch) b.buffers[binding(slot::volume_region)] = region_blocks[r].handle;
-        auto set = make_set(program_of(pass), b);
+        auto set = make_set(program_of(pass), b, reading(pass), uses[k]);
         if (!set) return failure{pass.label + ": " + set.error()};
         sets[std::size_t(slot)][k].push_back(*set);
       }
@@ -627,9 +677,89 @@ result<bool> renderer::impl::make_sets() {
   return true;
 }
 
+// The targets `pass` draws into, if it draws.
+const vk::targets* renderer::impl::attachments(const scheduled_pass& pass) const {
+  switch (pass.step) {
+    case pass_step::gbuffer: return &out.gbuffers[std::size_t(pass.index)];
+    case pass_step::ambient: return &out.lit;
+    case pass_step::shadow: return &shadow_map;
+    case pass_step::forward_light: return &lit_colour_only;
+    case pass_step::light: return &out.light_buffers[std::size_t(pass.index)];
+    case pass_step::compose:
+    case pass_step::blend:
+    case pass_step::resolve:
+    case pass_step::particles: return &out.composed;
+    case pass_step::capture: return &tail;
+    case pass_step::post: return &out.post.at(plan.post.passes[std::size_t(pass.index)].output);
+    case pass_step::bake:
+    case pass_step::bake_light:
+    case pass_step::shadow_layer:
+    case pass_step::atlas: break;
+  }
+  return nullptr;
+}
+
+// The images a transfer pass copies from and into.
+std::vector<image_use> renderer::impl::copies(const scheduled_pass& pass) const {
+  std::vector<image_use> u;
+  if (pass.step == pass_step::shadow_layer)
+    for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) {
+      u.push_back(copied(shadow_map.colors[t], false));
+      u.push_back(copied(shadow_layers[t], true));
+    }
+  if (pass.step == pass_step::atlas) u.push_back(copied(atlas, true));
+  return u;
+}
+
+// One barrier: memory from `from` to `to`, and every image of `images` not in the layout it needs moved
+// there after every access since its last move. The images are then in those layouts, accessed as they say.
+void renderer::impl::settle(VkCommandBuffer cmd, access from, access to, const std::vector<image_use>& images) {
+  std::vector<VkImageMemoryBarrier> moves;
+  for (const image_use& u : images) {
+    image_state& st = layouts[u.handle];
+    if (st.layout == u.layout) {
+      st.since.stages |= u.at.stages;
+      st.since.mask |= u.at.mask;
+      continue;
+    }
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = st.since.mask;
+    b.dstAccessMask = u.at.mask;
+    b.oldLayout = st.layout;
+    b.newLayout = u.layout;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = u.handle;
+    b.subresourceRange = {u.aspect, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
+    moves.push_back(b);
+    from.stages |= st.since.stages;
+    to.stages |= u.at.stages;
+    st = {u.layout, u.aspect, u.at};
+  }
+  if (!from.stages && moves.empty()) return;
+  VkMemoryBarrier m{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  m.srcAccessMask = from.mask;
+  m.dstAccessMask = to.mask;
+  // An image first used in this frame was last touched by the device's own submission: nothing to wait for.
+  vkCmdPipelineBarrier(cmd, from.stages ? from.stages : VkPipelineStageFlags(VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT), to.stages, 0, from.stages ? 1 : 0, &m, 0,
+                       nullptr, std::uint32_t(moves.size()), moves.data());
+}
+
+// Every image the frame left in another layout moved to SHADER_READ_ONLY_OPTIMAL (storage images stay in
+// GENERAL), visible to shaders and copies: what the engine finds after the frame.
+void renderer::impl::rest(VkCommandBuffer cmd) {
+  std::vector<image_use> moved;
+  const access read{VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT};
+  for (const auto& [handle, st] : layouts)
+    if (st.layout != VK_IMAGE_LAYOUT_GENERAL && st.layout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+      moved.push_back({handle, st.aspect, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, read});
+  settle(cmd, {}, {}, moved);
+}
+
 // A barrier before `pass` from every earlier write of what it reads or writes, and from every read since
-// of what it writes; then `pass` is the last writer of what it writes and a reader of the rest.
-void renderer::impl::barrier(VkCommandBuffer cmd, const scheduled_pass& pass) {
+// of what it writes, with the moves of its images into their layouts; then `pass` is the last writer of
+// what it writes and a reader of the rest.
+void renderer::impl::barrier(VkCommandBuffer cmd, const scheduled_pass& pass, const std::vector<image_use>& images) {
   access from, to;
   const access r = reading(pass), w = writing(pass);
   auto writes = [&](const std::string& name) { return std::find(pass.writes.begin(), pass.writes.end(), name) != pass.writes.end(); };
@@ -655,7 +785,7 @@ void renderer::impl::barrier(VkCommandBuffer cmd, const scheduled_pass& pass) {
       to.stages |= w.stages;
     }
   }
-  if (from.stages) memory_barrier(cmd, from, to);
+  settle(cmd, from, to, images);
   for (const std::string& name : pass.reads)
     if (!writes(name)) {
       states[name].reads.stages |= r.stages;
@@ -666,14 +796,11 @@ void renderer::impl::barrier(VkCommandBuffer cmd, const scheduled_pass& pass) {
 
 // The pictured light's shadow colour, copied out before the next light's shadow pass draws over it.
 void renderer::impl::copy_shadow_picture(VkCommandBuffer cmd) {
-  memory_barrier(cmd, {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT},
-                 {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
+  settle(cmd, {}, {}, {copied(shadow_map.colors[1], false)});
   VkBufferImageCopy copy{};
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   copy.imageExtent = {std::uint32_t(o.shadow_size), std::uint32_t(o.shadow_size), 1};
-  relayout(cmd, shadow_map.colors[1].handle, general, copy_from);
-  vkCmdCopyImageToBuffer(cmd, shadow_map.colors[1].handle, copy_from, out.shadow_picture.handle, 1, &copy);
-  relayout(cmd, shadow_map.colors[1].handle, copy_from, general);
+  vkCmdCopyImageToBuffer(cmd, shadow_map.colors[1].handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.shadow_picture.handle, 1, &copy);
   state& s = states["shadow map"];
   s.reads.stages |= VK_PIPELINE_STAGE_TRANSFER_BIT;
   memory_barrier(cmd, {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT}, {VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT});
@@ -685,45 +812,39 @@ void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, const 
   const program& p = program_of(pass);
   const VkDeviceSize zero = 0;
   const std::uint32_t i = std::uint32_t(std::max(pass.light, 0));
-  auto bind = [&](VkPipelineBindPoint point) {
-    vkCmdBindPipeline(cmd, point, p.pipe.handle);
-    vkCmdBindDescriptorSets(cmd, point, p.pipe.layout, 0, 1, &set[0], 0, nullptr);
-  };
-  auto fullscreen = [&](const vk::targets& into) {
-    dev.begin_rendering(cmd, into, pass.clears);
-    bind(VK_PIPELINE_BIND_POINT_GRAPHICS);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    dev.end_rendering(cmd);
-  };
+  if (pass.step == pass_step::capture) {
+    // Empty lists: every head none, no node taken.
+    VkClearColorValue empty{};
+    empty.uint32[0] = 0xffffffffu;
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, out.kbuffer_heads.handle, VK_IMAGE_LAYOUT_GENERAL, &empty, 1, &all);
+    const glm::uvec4 header(0u, 0u, out.kbuffer_capacity, 0u);
+    vkCmdUpdateBuffer(cmd, out.kbuffer_nodes.handle, 0, sizeof header, &header);
+    memory_barrier(cmd, {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT},
+                   {VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT});
+  }
+  const vk::targets* into = attachments(pass);
+  if (into) {
+    dev.begin_rendering(cmd, *into, pass.clears, true);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.handle);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.layout, 0, 1, &set[0], 0, nullptr);
+  }
   switch (pass.step) {
-    case pass_step::gbuffer:
     case pass_step::ambient:
-    case pass_step::shadow: {
-      const vk::targets& into = pass.step == pass_step::gbuffer ? out.gbuffers[std::size_t(pass.index)]
-                                : pass.step == pass_step::ambient ? out.lit
-                                                                  : shadow_map;
-      dev.begin_rendering(cmd, into, pass.clears);
-      bind(VK_PIPELINE_BIND_POINT_GRAPHICS);
-      if (pass.step == pass_step::ambient) vkCmdBindVertexBuffers(cmd, light_index_binding, 1, &light_index.handle, &zero);
+      vkCmdBindVertexBuffers(cmd, light_index_binding, 1, &light_index.handle, &zero);
       draw(cmd, pass);
-      dev.end_rendering(cmd);
-      if (pass.step == pass_step::shadow && pass.light == pictured_light && out.shadow_picture.handle && frames_recorded == 0)
-        copy_shadow_picture(cmd);  // once: the lights do not move
       break;
-    }
     case pass_step::forward_light: {
       // The engine draws instance 0: the light's index is bound where instance 0 reads it.
       const VkDeviceSize at = VkDeviceSize(i) * sizeof(std::uint32_t);
-      dev.begin_rendering(cmd, lit_colour_only, {});
-      bind(VK_PIPELINE_BIND_POINT_GRAPHICS);
       vkCmdBindVertexBuffers(cmd, light_index_binding, 1, &light_index.handle, &at);
       draw(cmd, pass);
-      dev.end_rendering(cmd);
       break;
     }
+    case pass_step::gbuffer:
+    case pass_step::shadow:
+    case pass_step::capture: draw(cmd, pass); break;
     case pass_step::light:
-      dev.begin_rendering(cmd, out.light_buffers[std::size_t(pass.index)], {});
-      bind(VK_PIPELINE_BIND_POINT_GRAPHICS);
       vkCmdBindVertexBuffers(cmd, light_index_binding, 1, &light_index.handle, &zero);
       if (pass.kind == pass_kind::fullscreen) {
         vkCmdDraw(cmd, 3, 1, 0, i);
@@ -733,7 +854,14 @@ void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, const 
         vkCmdBindIndexBuffer(cmd, sphere ? sphere_indices.handle : cone_indices.handle, 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, std::uint32_t(sphere ? sphere_count : cone_count), 1, 0, 0, i);
       }
-      dev.end_rendering(cmd);
+      break;
+    case pass_step::compose:
+    case pass_step::blend:
+    case pass_step::resolve:
+    case pass_step::post: vkCmdDraw(cmd, 3, 1, 0, 0); break;
+    case pass_step::particles:
+      vkCmdBindVertexBuffers(cmd, 0, 1, &quads[std::size_t(slot)].handle, &zero);
+      if (quad_counts[std::size_t(slot)]) vkCmdDraw(cmd, std::uint32_t(quad_counts[std::size_t(slot)]), 1, 0, 0);
       break;
     case pass_step::bake:
     case pass_step::bake_light:
@@ -750,55 +878,21 @@ void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, const 
         copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, shadow_layer_of.at(pass.light), 1};
         copy.extent = {std::uint32_t(o.shadow_size), std::uint32_t(o.shadow_size), 1};
-        const VkImage from = shadow_map.colors[t].handle, to = shadow_layers[t].handle;
-        relayout(cmd, from, general, copy_from);
-        relayout(cmd, to, general, copy_to);
-        vkCmdCopyImage(cmd, from, copy_from, to, copy_to, 1, &copy);
-        relayout(cmd, from, copy_from, general);
-        relayout(cmd, to, copy_to, general);
+        vkCmdCopyImage(cmd, shadow_map.colors[t].handle, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shadow_layers[t].handle,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
       }
       break;
     case pass_step::atlas: {
       VkBufferImageCopy copy{};
       copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
       copy.imageExtent = {std::uint32_t(atlas_size.x), std::uint32_t(atlas_size.y), std::uint32_t(atlas_size.z)};
-      relayout(cmd, atlas.handle, general, copy_to);
-      vkCmdCopyBufferToImage(cmd, out.volume_texels.handle, atlas.handle, copy_to, 1, &copy);
-      relayout(cmd, atlas.handle, copy_to, general);
+      vkCmdCopyBufferToImage(cmd, out.volume_texels.handle, atlas.handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
       break;
     }
-    case pass_step::compose:
-    case pass_step::blend:
-    case pass_step::resolve:
-      fullscreen(out.composed);
-      break;
-    case pass_step::capture: {
-      // Empty lists: every head none, no node taken.
-      VkClearColorValue empty{};
-      empty.uint32[0] = 0xffffffffu;
-      const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      vkCmdClearColorImage(cmd, out.kbuffer_heads.handle, VK_IMAGE_LAYOUT_GENERAL, &empty, 1, &all);
-      const glm::uvec4 header(0u, 0u, out.kbuffer_capacity, 0u);
-      vkCmdUpdateBuffer(cmd, out.kbuffer_nodes.handle, 0, sizeof header, &header);
-      memory_barrier(cmd, {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT},
-                     {VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT});
-      dev.begin_rendering(cmd, tail, pass.clears);
-      bind(VK_PIPELINE_BIND_POINT_GRAPHICS);
-      draw(cmd, pass);
-      dev.end_rendering(cmd);
-      break;
-    }
-    case pass_step::particles:
-      dev.begin_rendering(cmd, out.composed, {});
-      bind(VK_PIPELINE_BIND_POINT_GRAPHICS);
-      vkCmdBindVertexBuffers(cmd, 0, 1, &quads[std::size_t(slot)].handle, &zero);
-      if (quad_counts[std::size_t(slot)]) vkCmdDraw(cmd, std::uint32_t(quad_counts[std::size_t(slot)]), 1, 0, 0);
-      dev.end_rendering(cmd);
-      break;
-    case pass_step::post:
-      fullscreen(out.post.at(plan.post.passes[std::size_t(pass.index)].output));
-      break;
   }
+  if (into) dev.end_rendering(cmd);
+  if (pass.step == pass_step::shadow && pass.light == pictured_light && out.shadow_picture.handle && frames_recorded == 0)
+    copy_shadow_picture(cmd);  // once: the lights do not move
 }
 
 renderer::renderer(std::unique_ptr<impl> p) : p_(std::move(p)) {}
@@ -861,17 +955,20 @@ void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geomet
   vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.queries, first);
   for (const std::string& name : r.schedule.cleared) {
     const bool texels = name == "volume texels";
-    r.barrier(cmd, scheduled_pass("", "clear " + name, texels ? pass_kind::transfer : pass_kind::fullscreen, -1, {}, {name}));
+    std::vector<image_use> cleared;
+    const vk::targets* light_buffer = texels ? nullptr : &r.out.light_buffers[name == "light buffer" ? 0 : 1];
+    if (light_buffer) add_attachments(cleared, *light_buffer);
+    r.barrier(cmd, scheduled_pass("", "clear " + name, texels ? pass_kind::transfer : pass_kind::fullscreen, -1, {}, {name}), cleared);
     if (texels) {
       vkCmdFillBuffer(cmd, r.out.volume_texels.handle, 0, VK_WHOLE_SIZE, 0u);
     } else {
-      r.dev.begin_rendering(cmd, r.out.light_buffers[name == "light buffer" ? 0 : 1], {glm::vec4(0.0f)});
+      r.dev.begin_rendering(cmd, *light_buffer, {glm::vec4(0.0f)}, true);
       r.dev.end_rendering(cmd);
     }
   }
   for (std::size_t k = 0; k < r.schedule.passes.size(); ++k) {
     const scheduled_pass& pass = r.schedule.passes[k];
-    r.barrier(cmd, pass);
+    r.barrier(cmd, pass, r.uses[k]);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.queries, first + 2 + 2 * std::uint32_t(k));
     r.run(cmd, pass, r.sets[std::size_t(slot)][k], slot, draw);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r.queries, first + 3 + 2 * std::uint32_t(k));
@@ -880,6 +977,7 @@ void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geomet
   // reads after the frame, which the next frame waits for before it writes it.
   memory_barrier(cmd, {VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
                  {VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT});
+  r.rest(cmd);
   r.states[r.plan.post.passes.empty() ? "frame" : r.plan.post.output].reads.stages |= VK_PIPELINE_STAGE_ALL_COMMANDS_BIT;
   vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r.queries, first + 1);
   r.last_slot = slot;

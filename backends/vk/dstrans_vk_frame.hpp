@@ -12,12 +12,19 @@
 //   r->record(cmd, camera, [&](VkCommandBuffer cmd, const dstrans::scheduled_pass& pass) {
 //     bind_and_draw_my_meshes(cmd, pass.draws);   // pipeline, descriptor sets and targets are bound
 //   });                                           // then the engine submits cmd
-//   r->output();                                  // the image (GENERAL layout, written as a colour attachment)
+//   r->output();                                  // the image, in SHADER_READ_ONLY_OPTIMAL once cmd has run
+//
+// Layouts: while the frame runs, each image is in the layout its pass needs (colour and depth attachment,
+// shader read-only, transfer source or destination; the k-buffer's storage image in GENERAL), moved there by
+// the barrier before the pass. After the frame every target is in SHADER_READ_ONLY_OPTIMAL (the storage
+// image in GENERAL), its writes visible to fragment and compute shaders and to transfers: the engine samples
+// or copies output() with no barrier of its own, and leaves it in that layout for the next frame.
 //
 // Frames in flight: each of create's `frames_in_flight` frames has its own camera block, particle quads,
 // descriptor sets and timestamps, used again `frames_in_flight` records later; before that record, the
 // engine waits for the submission of the frame that used them (as it does for its own per-frame objects).
-// Targets are shared: the barriers order one frame's passes after the last frame's.
+// Targets are shared: the barriers order one frame's passes after the last frame's, so the engine submits
+// the command buffers in the order they were recorded.
 //
 // The engine's device needs dynamic rendering and the features depthClamp (light volumes) and
 // fragmentStoresAndAtomics (the k-buffer's lists).

@@ -665,7 +665,7 @@ bool whole_frame(const gpu& g, allocator& mem, const std::string& out, int w, in
         }
     });
     submit_and_wait(g, cmd);
-    auto texels = (*dev)->read_texels((*r)->output(), 0);
+    auto texels = (*dev)->read_texels((*r)->output(), 0, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     std::vector<unsigned char> pixels;  // RGBA8, rows from the top
     if (texels)
       for (const dstrans::texel& t : *texels) pixels.insert(pixels.end(), t.begin(), t.begin() + 4);

@@ -196,7 +196,7 @@ std::vector<dstrans::texel> vk_frame(const dstrans::scene& s, const std::vector<
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO, nullptr, 0, nullptr, nullptr, 1, &cmd, 0, nullptr};
   vkQueueSubmit((*hd)->ctx().queue, 1, &si, fence);
   vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
-  auto image = (*dev)->read_texels((*r)->output(), 0);
+  auto image = (*dev)->read_texels((*r)->output(), 0, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   vkDestroyFence(device, fence, nullptr);
   vkDestroyCommandPool(device, pool, nullptr);
   for (dstrans::vk::buffer& b : buffers) (*dev)->destroy(b);
