@@ -40,9 +40,21 @@ struct shared_text {
   int line;          // the line of its DSTRANS_SHARED
 };
 
-// Shared code sees GLM as GLSL sees its built-ins (vec3, dot, uint, ...).
+// Shared code sees GLM as GLSL sees its built-ins (vec3, dot, uint, ...). Each is declared here by name,
+// not through `using namespace glm`: that would put them beside an includer's `using namespace std` (or
+// its own min, max and clamp) in the global namespace, and an unqualified max(float, float) would be
+// ambiguous. Declared here, they are found first.
 namespace shader {
-using namespace glm;
+using glm::bvec2, glm::bvec3, glm::bvec4, glm::ivec2, glm::ivec3, glm::ivec4, glm::mat2, glm::mat3, glm::mat4, glm::uint,
+    glm::uvec2, glm::uvec3, glm::uvec4, glm::vec2, glm::vec3, glm::vec4;
+using glm::abs, glm::acos, glm::asin, glm::atan, glm::ceil, glm::clamp, glm::cos, glm::cross, glm::degrees, glm::distance,
+    glm::dot, glm::exp, glm::exp2, glm::faceforward, glm::floatBitsToInt, glm::floatBitsToUint, glm::floor, glm::fract,
+    glm::intBitsToFloat, glm::inverse, glm::inversesqrt, glm::isinf, glm::isnan, glm::length, glm::log, glm::log2,
+    glm::max, glm::min, glm::mix, glm::mod, glm::normalize, glm::pow, glm::radians, glm::reflect, glm::refract,
+    glm::round, glm::sign, glm::sin, glm::smoothstep, glm::sqrt, glm::step, glm::tan, glm::transpose, glm::trunc,
+    glm::uintBitsToFloat;
+using glm::packHalf2x16, glm::packSnorm2x16, glm::packSnorm4x8, glm::packUnorm2x16, glm::packUnorm4x8, glm::unpackHalf2x16,
+    glm::unpackSnorm2x16, glm::unpackSnorm4x8, glm::unpackUnorm2x16, glm::unpackUnorm4x8;
 }  // namespace shader
 
 }  // namespace dstrans
