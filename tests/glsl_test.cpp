@@ -3,6 +3,7 @@
 
 #include <fstream>
 
+#include <dstrans/gbuffer.hpp>
 #include <dstrans/glsl.hpp>
 #include <dstrans/result.hpp>
 #include <dstrans/surface.hpp>
@@ -91,4 +92,36 @@ TEST_CASE("result holds a value or a sentence", "[result]") {
   CHECK(bad.error() == "no display");
   result<std::string> text(std::string("abc"));
   CHECK(text->size() == 3);
+}
+
+TEST_CASE("a source opens with its version's line, or with none, and binds samplers only from GLSL 4.20", "[glsl]") {
+  CHECK(glsl::source().str() == "#version 450\n");
+  CHECK(glsl::source(glsl::version::glsl330).str() == "#version 330 core\n");
+  CHECK(glsl::source(glsl::version::glsl410).str() == "#version 410 core\n");
+  CHECK(glsl::source(glsl::version::vulkan).str() == "#version 450\n");
+  CHECK(glsl::source(glsl::version::glsl330, false).str().empty());
+  CHECK(!glsl::source(glsl::version::glsl330).binds());
+  CHECK(!glsl::source(glsl::version::glsl410).binds());
+  CHECK(glsl::source(glsl::version::glsl450).binds());
+  CHECK(glsl::source(glsl::version::vulkan).binds());
+  for (const char* name : {"330", "410", "450", "vulkan"}) {
+    const auto v = glsl::version_named(name);
+    REQUIRE(v);
+    CHECK(glsl::source(*v).language() == *v);
+  }
+  const auto bad = glsl::version_named("300 es");
+  REQUIRE(!bad);
+  CHECK(bad.error() == "unknown GLSL version '300 es' (known: 330, 410, 450, vulkan)");
+
+  // The read side names its samplers, with a binding where the version has them.
+  for (const glsl::version v : {glsl::version::glsl330, glsl::version::glsl450}) {
+    glsl::source src(v);
+    glsl::layout_options o;
+    o.sides = glsl::side::read;
+    o.first_binding = 5;
+    glsl::add_layout<thesis_gbuffer>(src, "gbuffer", o);
+    const bool bound = src.str().find("layout(binding = 5) uniform sampler2D dst_gbuffer_tex0;") != std::string::npos;
+    CHECK(bound == (v == glsl::version::glsl450));
+    CHECK(src.str().find("uniform sampler2D dst_gbuffer_tex3;") != std::string::npos);
+  }
 }

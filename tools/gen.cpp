@@ -19,12 +19,14 @@ namespace {
 
 const char* const usage =
     "usage: dstrans gen gbuffer <layout> [--side write|read|both] [--first-location N] [--first-binding N]\n"
-    "       dstrans gen interlace <predicate>\n"
+    "                                  [--glsl-version V]\n"
+    "       dstrans gen interlace <predicate> [--glsl-version V]\n"
     "       dstrans gen pipeline <scene.json> [--out DIR]   every shader the scene's pipeline compiles; with\n"
     "                                       --out one file each (<pass>.vert, <pass>.frag), else all printed\n"
     "layouts:    thesis (Table 3.1), compact (8 bytes, depth from the attachment), light (Table 3.2),\n"
     "            shadow (Table 3.3)\n"
-    "predicates: rows (the thesis's), columns, checker, none\n";
+    "predicates: rows (the thesis's), columns, checker, none\n"
+    "versions:   330, 410 (samplers by name: set their units with glUniform1i), 450 (the default), vulkan\n";
 
 struct named_layout {
   int targets;
@@ -129,15 +131,19 @@ int gen(std::vector<std::string> args) {
   }
   try {
     const std::string side = take_option(args, "--side", ""), location = take_option(args, "--first-location", ""),
-                      binding = take_option(args, "--first-binding", ""), out = take_option(args, "--out", "");
+                      binding = take_option(args, "--first-binding", ""), out = take_option(args, "--out", ""),
+                      version_name = take_option(args, "--glsl-version", "450");
     args = operands(args);
+    const result<glsl::version> version = glsl::version_named(version_name);
+    if (!version) throw usage_error{version.error()};
     if (args.size() == 2 && args[0] == "pipeline") {
       if (!(side + location + binding).empty()) throw usage_error{"gen pipeline takes only --out"};
+      if (*version != glsl::version::glsl450) throw usage_error{"gen pipeline writes dstrans's own passes, which are GLSL 450"};
       return gen_pipeline(args[1], out);
     }
     if (!out.empty()) throw usage_error{"--out goes with gen pipeline"};
     if (args.size() != 2) throw usage_error{"gen takes a kind and a name"};
-    glsl::source src;
+    glsl::source src(*version);
     if (args[0] == "gbuffer") {
       const named_layout& l = pick(layouts(), args[1], "layout");
       glsl::layout_options opt;
@@ -147,7 +153,7 @@ int gen(std::vector<std::string> args) {
       if (!binding.empty()) opt.first_binding = to_int(binding, 0, 64 - l.targets, "--first-binding");
       l.add(src, opt);
     } else if (args[0] == "interlace") {
-      if (!(side + location + binding).empty()) throw usage_error{"gen interlace takes no options"};
+      if (!(side + location + binding).empty()) throw usage_error{"gen interlace takes only --glsl-version"};
       pick(predicates(), args[1], "interlace predicate")(src);
     }
     else throw usage_error{"unknown kind '" + args[0] + "' (known: gbuffer, interlace, pipeline)"};

@@ -4,6 +4,7 @@
 //   src.add_shared(dstrans::text::dst_surface);           // a shared block, once however often added
 //   src.add("void main() {}\n", __FILE__, __LINE__);      // generated or hand-written text
 //   std::string code = src.str();                         // starts with "#version 450"
+//   dstrans::glsl::source old(dstrans::glsl::version::glsl330);   // "#version 330 core", samplers by name
 //   src.add_file("my_shaders/compose.frag.glsl", {"DST_TRANSPARENCY"});   // a pass shader, its lines mapped
 //                                                         // to that file, its DST_ switches resolved
 //   src.add_text(text, "my_pass.frag.glsl", {});          // the same for text already in memory
@@ -110,10 +111,37 @@ inline std::vector<std::string> definitions(const char* code) {
   return names;
 }
 
+// The GLSL a source is written in. Before GLSL 4.20 a sampler cannot state its binding: the generators
+// then declare it by name alone, and the engine points it at a texture unit with glUniform1i.
+enum class version {
+  glsl330,  // "#version 330 core"
+  glsl410,  // "#version 410 core"
+  glsl450,  // "#version 450"
+  vulkan,   // "#version 450", compiled with Vulkan semantics (glslang -V)
+};
+
+// The version named `name` ("330", "410", "450" or "vulkan"); a failure names those.
+inline result<version> version_named(const std::string& name) {
+  if (name == "330") return version::glsl330;
+  if (name == "410") return version::glsl410;
+  if (name == "450") return version::glsl450;
+  if (name == "vulkan") return version::vulkan;
+  return failure{"unknown GLSL version '" + name + "' (known: 330, 410, 450, vulkan)"};
+}
+
 // A GLSL translation unit under construction.
 class source {
  public:
-  source() { add("#version 450\n", __FILE__, __LINE__); }
+  // A source in `v`, opening with its #version line, or with none (`version_line` false) where the
+  // engine puts its own first.
+  explicit source(version v = version::glsl450, bool version_line = true) : version_(v) {
+    static const char* const lines[] = {"#version 330 core\n", "#version 410 core\n", "#version 450\n", "#version 450\n"};
+    if (version_line) add(lines[int(v)], __FILE__, __LINE__);
+  }
+
+  version language() const { return version_; }
+  // Whether resources may carry layout(binding = N): GLSL 4.20 and later, and Vulkan.
+  bool binds() const { return version_ == version::glsl450 || version_ == version::vulkan; }
 
   // Appends `text`, whose first line is line `line` of `file`; its other lines follow on.
   void add(const std::string& text, const std::string& file, int line) {
@@ -276,6 +304,7 @@ class source {
            std::to_string(line) + ")";
   }
 
+  version version_;
   std::string code_;
   std::vector<origin> lines_;
   std::vector<const shared_text*> shared_;

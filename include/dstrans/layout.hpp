@@ -334,7 +334,7 @@ enum class side { write, read, both };
 struct layout_options {
   side sides = side::both;
   int first_location = 0;  // the output location of target 0
-  int first_binding = 0;   // the sampler binding of target 0
+  int first_binding = 0;   // the sampler binding of target 0 (where the source's version has bindings)
   // For a layout without a depth field (compact_gbuffer): the binding of the depth attachment the read
   // side takes depth from (-1: none, depth reads 0).
   int depth_attachment_binding = -1;
@@ -346,6 +346,10 @@ inline const char* swizzle(int offset, int n) {
   return table[offset][n - 1];
 }
 inline const char* vec_type(int n) { return n == 1 ? "float" : n == 2 ? "vec2" : n == 3 ? "vec3" : "vec4"; }
+// A sampler's layout qualifier at `binding`, where `src`'s version has one (else the engine binds it by name).
+inline std::string sampler_binding(const source& src, int binding) {
+  return src.binds() ? "layout(binding = " + std::to_string(binding) + ") " : "";
+}
 template <class Record>
 const shared_text& record_text();
 template <>
@@ -382,7 +386,8 @@ std::string layout_table(const std::string& name) {
 //   void dst_NAME_pack(RECORD r, out vec4 t0, ...);   RECORD dst_NAME_unpack(vec4 t0, ...);
 // and, as opt.sides asks,
 //   write side: outputs at opt.first_location..., void dst_NAME_store(int target, vec4 v), void dst_NAME_write(RECORD r)
-//   read side:  samplers at opt.first_binding..., vec4 dst_NAME_fetch(int target, ivec2 pixel), RECORD dst_NAME_read(ivec2 pixel)
+//   read side:  samplers dst_NAME_tex0... at opt.first_binding... (before GLSL 4.20: by name alone),
+//               vec4 dst_NAME_fetch(int target, ivec2 pixel), RECORD dst_NAME_read(ivec2 pixel)
 //               (with opt.depth_attachment_binding, a layout without depth reads it from that sampler)
 // An engine with its own bindings defines DSTRANS_NAME_STORE or DSTRANS_NAME_FETCH (NAME in capitals)
 // before this code and implements dst_NAME_store or dst_NAME_fetch itself.
@@ -464,8 +469,7 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
   if (opt.sides != side::write) {
     code += "\n#ifndef " + macro + "_FETCH\n";
     for (int i = 0; i < n; ++i)
-      code += "layout(binding = " + std::to_string(opt.first_binding + i) + ") uniform sampler2D " + fn + "_tex" +
-              std::to_string(i) + ";\n";
+      code += detail::sampler_binding(src, opt.first_binding + i) + "uniform sampler2D " + fn + "_tex" + std::to_string(i) + ";\n";
     code += "vec4 " + fn + "_fetch(int target, ivec2 pixel) {\n";
     for (int i = 0; i + 1 < n; ++i)
       code += "  if (target == " + std::to_string(i) + ") return texelFetch(" + fn + "_tex" + std::to_string(i) +
@@ -473,8 +477,7 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
     code += "  return texelFetch(" + fn + "_tex" + std::to_string(n - 1) + ", pixel, 0);\n}\n#endif\n";
     const bool attachment = opt.depth_attachment_binding >= 0 && !L::template stores<field::depth>();
     if (attachment)
-      code += "layout(binding = " + std::to_string(opt.depth_attachment_binding) + ") uniform sampler2D " + fn +
-              "_depth_attachment;\n";
+      code += detail::sampler_binding(src, opt.depth_attachment_binding) + "uniform sampler2D " + fn + "_depth_attachment;\n";
     code += rtype + " " + fn + "_read(ivec2 pixel) {\n  " + rtype + " r = " + fn + "_unpack(";
     for (int i = 0; i < n; ++i) code += std::string(i ? ", " : "") + fn + "_fetch(" + std::to_string(i) + ", pixel)";
     code += ");\n";
