@@ -345,7 +345,13 @@ std::string dstrans_text(bool gbuffer_write, bool shadow_write, bool shadows_rea
   dstrans::glsl::source src;
   std::string hooks = "#define DSTRANS_GBUFFER_FETCH\n"
                       "layout(binding = 0) uniform sampler2D engine_gbuffer[4];\n"
-                      "vec4 dst_gbuffer_fetch(int t, ivec2 p) { return texelFetch(engine_gbuffer[t], p, 0); }\n"
+                      // Constant indices: GLSL before 4.00, and ES, index sampler arrays no other way.
+                      "vec4 dst_gbuffer_fetch(int t, ivec2 p) {\n"
+                      "  if (t == 0) return texelFetch(engine_gbuffer[0], p, 0);\n"
+                      "  if (t == 1) return texelFetch(engine_gbuffer[1], p, 0);\n"
+                      "  if (t == 2) return texelFetch(engine_gbuffer[2], p, 0);\n"
+                      "  return texelFetch(engine_gbuffer[3], p, 0);\n"
+                      "}\n"
                       "#define DSTRANS_SHADOW_FETCH\n"
                       "layout(binding = 8) uniform sampler2D engine_shadow_depth;\n"
                       "layout(binding = 9) uniform sampler2D engine_shadow_colour;\n"
