@@ -107,6 +107,33 @@ TEST_CASE("generated interlace predicates compile for GL and Vulkan", "[glsl][sp
   check(interlace::none{});
 }
 
+TEST_CASE("pixels counted from the bottom row reach the predicates and the refraction turned over", "[glsl][spirv]") {
+  // The C++ of the turn: the bottom row of a 181-row image is row 180 from the top, and back.
+  CHECK(shader::dst_flip_rows(glm::ivec2(3, 0), glm::ivec2(320, 181)) == glm::ivec2(3, 180));
+  CHECK(shader::dst_flip_rows(shader::dst_flip_rows(glm::ivec2(7, 42), glm::ivec2(320, 181)), glm::ivec2(320, 181)) == glm::ivec2(7, 42));
+  for (const glsl::rows r : {glsl::rows::from_top, glsl::rows::from_bottom}) {
+    glsl::dialect d;
+    d.pixel_rows = r;
+    glsl::source src(d);
+    glsl::add_interlace<interlace::rows>(src);
+    glsl::add_refraction(src);
+    src.add("layout(location = 0) out vec4 o;\n"
+            "void main() {\n"
+            "  ivec2 p = ivec2(gl_FragCoord.xy), size = ivec2(320, 181);\n"
+            "  if (!dst_interlace_keep(p, size)) discard;\n"
+            "  o = vec4(vec2(dst_interlace_partner(p, size)), vec2(dst_refract(p, size, vec3(0.0f, 1.0f, 0.0f), 4.0f)));\n"
+            "}\n",
+            __FILE__, __LINE__);
+    const bool turned = src.str().find("dst_rows_keep(dst_flip_rows(pixel, size), size)") != std::string::npos &&
+                        src.str().find("dst_flip_rows(dst_refraction_pixel(dst_flip_rows(pixel, size)") != std::string::npos;
+    CHECK(turned == (r == glsl::rows::from_bottom));
+    for (spirv::api a : apis) {
+      INFO(api_name(a));
+      CHECK(spirv::compile(src, spirv::stage::fragment, a));
+    }
+  }
+}
+
 TEST_CASE("compile errors name the dstrans source line, reflection rejects garbage", "[spirv]") {
   glsl::source src;
   glsl::add_layout<thesis_light_buffer>(src, "light");

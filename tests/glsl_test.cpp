@@ -99,7 +99,12 @@ TEST_CASE("a source opens with its version's line, or with none, and binds sampl
   CHECK(glsl::source(glsl::version::glsl330).str() == "#version 330 core\n");
   CHECK(glsl::source(glsl::version::glsl410).str() == "#version 410 core\n");
   CHECK(glsl::source(glsl::version::vulkan).str() == "#version 450\n");
-  CHECK(glsl::source(glsl::version::glsl330, false).str().empty());
+  glsl::dialect own_line;
+  own_line.language = glsl::version::glsl330;
+  own_line.version_line = false;
+  CHECK(glsl::source(own_line).str().empty());
+  CHECK(glsl::source(own_line).language() == glsl::version::glsl330);
+  CHECK(glsl::source().pixel_rows() == glsl::rows::from_top);
   CHECK(!glsl::source(glsl::version::glsl330).binds());
   CHECK(!glsl::source(glsl::version::glsl410).binds());
   CHECK(glsl::source(glsl::version::glsl450).binds());

@@ -10,7 +10,6 @@
 //
 //   engine_gl --step 3 --out step3.png
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -209,7 +208,7 @@ void main() {
 const char* const dstrans_gbuffer_fs = R"(
 layout(location = 6) uniform ivec2 target_size;
 void main() {
-  if (alpha < 1.0 && !dst_interlace_keep(engine_top_down(ivec2(gl_FragCoord.xy), target_size), target_size)) discard;
+  if (alpha < 1.0 && !dst_interlace_keep(ivec2(gl_FragCoord.xy), target_size)) discard;
   dst_surface s = dst_surface_zero();
   s.diffuse = colour;
   s.alpha = alpha;
@@ -279,7 +278,7 @@ vec3 engine_shadow(vec3 world, vec3 light) {
   ivec2 size = textureSize(engine_shadow_depth, 0);
   ivec2 t = ivec2(c.xy * vec2(size));
   if (h.w <= 0.0 || any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) return light;
-  ivec2 o = engine_partner(t, size);
+  ivec2 o = dst_interlace_partner(t, size);
   dst_surface a = dst_shadow_read(t), b = dst_shadow_read(o);
   return dst_transparent_shadow(light, c.z, 0.002, a.depth, vec4(a.diffuse, a.alpha), b.depth, vec4(b.diffuse, b.alpha));
 }
@@ -316,7 +315,7 @@ dst_light_sample engine_light_at(ivec2 p) {
 }
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy), size = textureSize(engine_light, 0);
-  ivec2 q = engine_partner(p, size);
+  ivec2 q = dst_interlace_partner(p, size);
   dst_surface a = dst_gbuffer_read(p), b = dst_gbuffer_read(q);
   if (a.alpha >= 1.0 && b.alpha >= 1.0) {
     colour_out = vec4(dst_shade(a, engine_light_at(p), ambient), 1.0);
@@ -326,8 +325,8 @@ void main() {
   dst_surface t = a_glass ? a : b, o = a_glass ? b : a;
   dst_light_sample lt = engine_light_at(a_glass ? p : q), lo = engine_light_at(a_glass ? q : p);
   if (refraction > 0.0) {
-    ivec2 m = engine_top_down(dst_refraction_pixel(engine_top_down(p, size), size, mat3(view) * t.normal, refraction), size);
-    ivec2 m2 = engine_partner(m, size);
+    ivec2 m = dst_refract(p, size, mat3(view) * t.normal, refraction);
+    ivec2 m2 = dst_interlace_partner(m, size);
     dst_surface r = dst_gbuffer_read(m), r2 = dst_gbuffer_read(m2);
     int from = dst_refraction_source(t.depth, r.alpha, r.depth, r2.alpha, r2.depth);
     if (from != 0) {
@@ -342,7 +341,13 @@ void main() {
 // [step 1] dstrans text for a shader: its layouts with the engine's own fetch hooks (sampler bindings are
 // the engine's), the interlace predicate, and the shared formulas the engine's code calls.
 std::string dstrans_text(bool gbuffer_write, bool shadow_write, bool shadows_read) {
-  dstrans::glsl::source src;
+  // The engine's shaders start with their own #version line, and pass GL's pixels as they are (rows from
+  // the bottom): dstrans turns them over where its predicates and refraction need rows from the top, so
+  // both APIs keep glass on the same rows.
+  dstrans::glsl::dialect gl;
+  gl.version_line = false;
+  gl.pixel_rows = dstrans::glsl::rows::from_bottom;
+  dstrans::glsl::source src(gl);
   std::string hooks = "#define DSTRANS_GBUFFER_FETCH\n"
                       "layout(binding = 0) uniform sampler2D engine_gbuffer[4];\n"
                       // Constant indices: GLSL before 4.00, and ES, index sampler arrays no other way.
@@ -359,9 +364,6 @@ std::string dstrans_text(bool gbuffer_write, bool shadow_write, bool shadows_rea
                       "  return t == 0 ? texelFetch(engine_shadow_depth, p, 0) : texelFetch(engine_shadow_colour, p, 0);\n"
                       "}\n";
   src.add(hooks, __FILE__, __LINE__);
-  // GL counts window rows from the bottom and dstrans's pixels count them from the top (as Vulkan does):
-  // the engine turns its pixels over where it hands them to dstrans, so both APIs keep the same rows.
-  src.add("ivec2 engine_top_down(ivec2 p, ivec2 size) { return ivec2(p.x, size.y - 1 - p.y); }\n", __FILE__, __LINE__);
   dstrans::glsl::layout_options o;
   o.sides = gbuffer_write ? dstrans::glsl::side::write : dstrans::glsl::side::read;
   dstrans::glsl::add_layout<dstrans::thesis_gbuffer>(src, "gbuffer", o);
@@ -369,15 +371,10 @@ std::string dstrans_text(bool gbuffer_write, bool shadow_write, bool shadows_rea
     o.sides = shadow_write ? dstrans::glsl::side::write : dstrans::glsl::side::read;
     dstrans::glsl::add_layout<dstrans::thesis_shadow_map>(src, "shadow", o);
   }
-  dstrans::glsl::add_interlace<dstrans::interlace::rows>(src);
-  src.add("ivec2 engine_partner(ivec2 p, ivec2 size) {\n"
-          "  return engine_top_down(dst_interlace_partner(engine_top_down(p, size), size), size);\n"
-          "}\n",
-          __FILE__, __LINE__);
-  for (const dstrans::shared_text* t : {&dstrans::text::dst_compose, &dstrans::text::dst_refraction,
-                                        &dstrans::text::dst_transparent_shadow})
-    src.add_shared(*t);
-  return src.str().substr(std::strlen("#version 450\n"));
+  dstrans::glsl::add_interlace<dstrans::interlace::rows>(src);   // dst_interlace_keep/_partner
+  dstrans::glsl::add_refraction(src);                             // dst_refract
+  for (const dstrans::shared_text* t : {&dstrans::text::dst_compose, &dstrans::text::dst_transparent_shadow}) src.add_shared(*t);
+  return src.str();
 }
 
 }  // namespace engine

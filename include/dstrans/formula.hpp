@@ -313,6 +313,7 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_interlace_checker, dst_checker_partner),
       DSTRANS_FORMULA(dst_interlace_none, dst_none_keep),
       DSTRANS_FORMULA(dst_interlace_none, dst_none_partner),
+      DSTRANS_FORMULA(dst_flip_rows, dst_flip_rows),
       DSTRANS_FORMULA(dst_fullscreen, dst_fullscreen_position).yields(-1.0f, 3.0f),
       DSTRANS_FORMULA(dst_pixel_ndc, dst_pixel_ndc),
       DSTRANS_FORMULA(dst_phong, dst_phong)

@@ -5,6 +5,9 @@
 //   src.add("void main() {}\n", __FILE__, __LINE__);      // generated or hand-written text
 //   std::string code = src.str();                         // starts with "#version 450"
 //   dstrans::glsl::source old(dstrans::glsl::version::glsl330);   // "#version 330 core", samplers by name
+//   dstrans::glsl::dialect gl;                            // an engine's own way of writing GLSL:
+//   gl.pixel_rows = dstrans::glsl::rows::from_bottom;     // it passes gl_FragCoord's pixels as they are
+//   dstrans::glsl::source mine(gl);
 //   src.add_file("my_shaders/compose.frag.glsl", {"DST_TRANSPARENCY"});   // a pass shader, its lines mapped
 //                                                         // to that file, its DST_ switches resolved
 //   src.add_text(text, "my_pass.frag.glsl", {});          // the same for text already in memory
@@ -129,19 +132,32 @@ inline result<version> version_named(const std::string& name) {
   return failure{"unknown GLSL version '" + name + "' (known: 330, 410, 450, vulkan)"};
 }
 
+// Which way the pixels an engine hands to dstrans's GLSL count rows. dstrans counts them from the top of the
+// image (Vulkan's gl_FragCoord, and GL's with glClipControl(GL_UPPER_LEFT)); GL's default gl_FragCoord
+// counts them from the bottom. The interlace predicates and the refraction offset follow this one switch.
+enum class rows { from_top, from_bottom };
+
+// How an engine writes its GLSL.
+struct dialect {
+  version language = version::glsl450;
+  bool version_line = true;          // false: the engine puts its own #version line first
+  rows pixel_rows = rows::from_top;  // the pixels passed to dst_interlace_keep/_partner and dst_refract
+};
+
 // A GLSL translation unit under construction.
 class source {
  public:
-  // A source in `v`, opening with its #version line, or with none (`version_line` false) where the
-  // engine puts its own first.
-  explicit source(version v = version::glsl450, bool version_line = true) : version_(v) {
+  // A source written as `d` asks, opening with its version's line unless d.version_line is false.
+  explicit source(const dialect& d = {}) : dialect_(d) {
     static const char* const lines[] = {"#version 330 core\n", "#version 410 core\n", "#version 450\n", "#version 450\n"};
-    if (version_line) add(lines[int(v)], __FILE__, __LINE__);
+    if (d.version_line) add(lines[int(d.language)], __FILE__, __LINE__);
   }
+  explicit source(version v) : source(dialect{v}) {}
 
-  version language() const { return version_; }
+  version language() const { return dialect_.language; }
+  rows pixel_rows() const { return dialect_.pixel_rows; }
   // Whether resources may carry layout(binding = N): GLSL 4.20 and later, and Vulkan.
-  bool binds() const { return version_ == version::glsl450 || version_ == version::vulkan; }
+  bool binds() const { return language() == version::glsl450 || language() == version::vulkan; }
 
   // Appends `text`, whose first line is line `line` of `file`; its other lines follow on.
   void add(const std::string& text, const std::string& file, int line) {
@@ -304,7 +320,7 @@ class source {
            std::to_string(line) + ")";
   }
 
-  version version_;
+  dialect dialect_;
   std::string code_;
   std::vector<origin> lines_;
   std::vector<const shared_text*> shared_;

@@ -25,6 +25,15 @@
 #include "glsl.hpp"
 #include "surface.hpp"
 
+// A pixel's row counted from the other edge of the image: from the top to from the bottom and back. A pixel
+// outside the image has no row to turn over and stays where it is.
+DSTRANS_SHARED(dst_flip_rows,
+DST_FN ivec2 dst_flip_rows(ivec2 p, ivec2 size) {
+  if (p.y < 0 || p.y >= size.y) return p;
+  return ivec2(p.x, size.y - 1 - p.y);
+}
+)
+
 DSTRANS_SHARED(dst_interlace_rows,
 DST_FN bool dst_rows_keep(ivec2 p, ivec2 size) { return (p.y & 1) == 1; }
 DST_FN ivec2 dst_rows_partner(ivec2 p, ivec2 size) {
@@ -108,13 +117,23 @@ namespace glsl {
 
 // Appends predicate I and binds the generic names the passes call:
 //   bool dst_interlace_keep(ivec2 pixel, ivec2 size); ivec2 dst_interlace_partner(ivec2 pixel, ivec2 size);
+// Their pixels count rows as src.pixel_rows() says; the predicate sees them from the top.
 template <class I>
 void add_interlace(source& src) {
   src.add_shared(I::text);
   const std::string k = std::string("dst_") + I::name;
-  src.add("// dstrans interlace predicate \"" + std::string(I::name) + "\"\n" +
-              "bool dst_interlace_keep(ivec2 pixel, ivec2 size) { return " + k + "_keep(pixel, size); }\n" +
-              "ivec2 dst_interlace_partner(ivec2 pixel, ivec2 size) { return " + k + "_partner(pixel, size); }\n",
+  if (src.pixel_rows() == rows::from_top) {
+    src.add("// dstrans interlace predicate \"" + std::string(I::name) + "\"\n" +
+                "bool dst_interlace_keep(ivec2 pixel, ivec2 size) { return " + k + "_keep(pixel, size); }\n" +
+                "ivec2 dst_interlace_partner(ivec2 pixel, ivec2 size) { return " + k + "_partner(pixel, size); }\n",
+            __FILE__, __LINE__);
+    return;
+  }
+  src.add_shared(text::dst_flip_rows);
+  src.add("// dstrans interlace predicate \"" + std::string(I::name) + "\", pixels counted from the bottom row\n" +
+              "bool dst_interlace_keep(ivec2 pixel, ivec2 size) { return " + k + "_keep(dst_flip_rows(pixel, size), size); }\n" +
+              "ivec2 dst_interlace_partner(ivec2 pixel, ivec2 size) {\n" +
+              "  return dst_flip_rows(" + k + "_partner(dst_flip_rows(pixel, size), size), size);\n}\n",
           __FILE__, __LINE__);
 }
 

@@ -14,6 +14,8 @@
 //   bool leak = dstrans::shader::dst_refraction_rejected(depth_t, depth_o);
 //   glm::vec3 colour = dstrans::shader::dst_compose(opaque, light_o, transparent, light_t, ambient);
 //   glm::vec3 same = dstrans::shader::dst_blend(lit_opaque, lit_transparent, alpha_t);   // colours already lit
+//   dstrans::glsl::add_refraction(src);   // GLSL: dst_refract(pixel, size, view_normal, strength), with
+//                                          // pixels counting rows as src's dialect says (glsl::rows)
 //
 // Choices (each one of the project's tested hard cases): screen y grows downwards while view y grows upwards, so
 // the offset's y is negated; the offset rounds to the nearest pixel, halves up (GLSL's round() may go
@@ -30,7 +32,11 @@
 // errors of the thesis's Figure 4.7.
 #pragma once
 
+#include <string>
+
 #include "detail/shared.hpp"
+#include "glsl.hpp"
+#include "interlace.hpp"
 #include "surface.hpp"
 
 DSTRANS_SHARED(dst_refraction,
@@ -71,3 +77,25 @@ DST_FN vec3 dst_compose(dst_surface o, dst_light_sample light_o, dst_surface t, 
   return dst_blend(dst_shade(o, light_o, ambient), dst_shade(t, light_t, ambient), t.alpha);
 }
 )
+
+namespace dstrans::glsl {
+
+// Appends the refraction formulas and
+//   ivec2 dst_refract(ivec2 pixel, ivec2 size, vec3 view_normal, float strength);
+// dst_refraction_pixel for pixels that count rows as src.pixel_rows() says: from the bottom, the offset's
+// y keeps the view normal's sign, since both grow upwards.
+inline void add_refraction(source& src) {
+  src.add_shared(text::dst_refraction);
+  if (src.pixel_rows() == rows::from_top) {
+    src.add("ivec2 dst_refract(ivec2 pixel, ivec2 size, vec3 view_normal, float strength) {\n"
+            "  return dst_refraction_pixel(pixel, size, view_normal, strength);\n}\n",
+            __FILE__, __LINE__);
+    return;
+  }
+  src.add_shared(text::dst_flip_rows);
+  src.add("ivec2 dst_refract(ivec2 pixel, ivec2 size, vec3 view_normal, float strength) {  // pixels from the bottom row\n"
+          "  return dst_flip_rows(dst_refraction_pixel(dst_flip_rows(pixel, size), size, view_normal, strength), size);\n}\n",
+          __FILE__, __LINE__);
+}
+
+}  // namespace dstrans::glsl
