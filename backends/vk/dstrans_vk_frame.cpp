@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <utility>
 
 #include <dstrans/frame/passes.hpp>
 #include <dstrans/particles.hpp>
@@ -178,6 +179,16 @@ struct renderer::impl {
   };
   std::map<VkImage, image_state> layouts;
   std::vector<std::vector<image_use>> uses;  // by pass: the images it draws into, samples, stores to or copies
+  // The frame's opening clears (frame_schedule::cleared), each as the pass the barriers see.
+  struct frame_clear {
+    scheduled_pass pass;
+    const vk::targets* light_buffer;  // null: the volume texels
+    std::vector<image_use> images;
+  };
+  std::vector<frame_clear> clears;
+  // What settle and rest build, kept so that recording a frame allocates nothing.
+  std::vector<VkImageMemoryBarrier> moves;
+  std::vector<image_use> resting;
 
   ~impl();
   result<compiled> compile(const result<pass_sources>& p, const std::string& name);
@@ -657,6 +668,14 @@ result<bool> renderer::impl::make_sets() {
   if (vkCreateDescriptorPool(dev.ctx().device, &pci, dev.ctx().allocator, &pool) != VK_SUCCESS) return failure{"no descriptor pool"};
   sets.assign(std::size_t(slots), std::vector<std::vector<VkDescriptorSet>>(schedule.passes.size()));
   uses.assign(schedule.passes.size(), {});
+  clears.clear();
+  for (const std::string& name : schedule.cleared) {
+    const bool texels = name == "volume texels";
+    frame_clear c{scheduled_pass("", "clear " + name, texels ? pass_kind::transfer : pass_kind::fullscreen, -1, {}, {name}),
+                  texels ? nullptr : &out.light_buffers[name == "light buffer" ? 0 : 1], {}};
+    if (c.light_buffer) add_attachments(c.images, *c.light_buffer);
+    clears.push_back(std::move(c));
+  }
   for (std::size_t k = 0; k < schedule.passes.size(); ++k) {
     if (const vk::targets* t = attachments(schedule.passes[k])) add_attachments(uses[k], *t);
     for (const image_use& u : copies(schedule.passes[k])) add_use(uses[k], u);
@@ -714,7 +733,7 @@ std::vector<image_use> renderer::impl::copies(const scheduled_pass& pass) const 
 // One barrier: memory from `from` to `to`, and every image of `images` not in the layout it needs moved
 // there after every access since its last move. The images are then in those layouts, accessed as they say.
 void renderer::impl::settle(VkCommandBuffer cmd, access from, access to, const std::vector<image_use>& images) {
-  std::vector<VkImageMemoryBarrier> moves;
+  moves.clear();
   for (const image_use& u : images) {
     image_state& st = layouts[u.handle];
     if (st.layout == u.layout) {
@@ -747,13 +766,13 @@ void renderer::impl::settle(VkCommandBuffer cmd, access from, access to, const s
 // Every image the frame left in another layout moved to SHADER_READ_ONLY_OPTIMAL (storage images stay in
 // GENERAL), visible to shaders and copies: what the engine finds after the frame.
 void renderer::impl::rest(VkCommandBuffer cmd) {
-  std::vector<image_use> moved;
+  resting.clear();
   const access read{VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT};
   for (const auto& [handle, st] : layouts)
     if (st.layout != VK_IMAGE_LAYOUT_GENERAL && st.layout != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-      moved.push_back({handle, st.aspect, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, read});
-  settle(cmd, {}, {}, moved);
+      resting.push_back({handle, st.aspect, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, read});
+  settle(cmd, {}, {}, resting);
 }
 
 // A barrier before `pass` from every earlier write of what it reads or writes, and from every read since
@@ -953,16 +972,12 @@ void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geomet
   const std::uint32_t first = std::uint32_t(slot) * r.queries_per_frame;
   vkCmdResetQueryPool(cmd, r.queries, first, r.queries_per_frame);
   vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, r.queries, first);
-  for (const std::string& name : r.schedule.cleared) {
-    const bool texels = name == "volume texels";
-    std::vector<image_use> cleared;
-    const vk::targets* light_buffer = texels ? nullptr : &r.out.light_buffers[name == "light buffer" ? 0 : 1];
-    if (light_buffer) add_attachments(cleared, *light_buffer);
-    r.barrier(cmd, scheduled_pass("", "clear " + name, texels ? pass_kind::transfer : pass_kind::fullscreen, -1, {}, {name}), cleared);
-    if (texels) {
+  for (const impl::frame_clear& c : r.clears) {
+    r.barrier(cmd, c.pass, c.images);
+    if (!c.light_buffer) {
       vkCmdFillBuffer(cmd, r.out.volume_texels.handle, 0, VK_WHOLE_SIZE, 0u);
     } else {
-      r.dev.begin_rendering(cmd, *light_buffer, {glm::vec4(0.0f)}, true);
+      r.dev.begin_rendering(cmd, *c.light_buffer, {glm::vec4(0.0f)}, true);
       r.dev.end_rendering(cmd);
     }
   }
