@@ -57,6 +57,9 @@ void check_layout(const std::string& name, const std::string& record) {
 TEST_CASE("generated layouts compile for GL and Vulkan and reflect as described", "[glsl][spirv]") {
   check_layout<thesis_gbuffer>("gbuffer", "dst_surface");
   check_layout<thesis_light_buffer>("light", "dst_light_sample");
+  check_layout<rgb_light_buffer>("light", "dst_light_sample");
+  // White specular in a float target: its one channel still goes through the codec.
+  check_layout<layout<light_sample, target<format::rgba32f, field::light, field::specular>>>("light", "dst_light_sample");
   check_layout<thesis_shadow_map>("shadow", "dst_surface");
   check_layout<float_layout>("custom", "dst_surface");
 }

@@ -99,10 +99,24 @@ TEST_CASE("fields a layout does not store read back as zero", "[layout]") {
 
   light_sample ls = shader::dst_light_sample_zero();
   ls.light = {2.0f, 0.5f, -1.0f};  // RGBA8 saturates, as the thesis's light buffer does
-  ls.specular = 0.25f;
+  ls.specular = {0.5f, 0.25f, 0.0f};  // Table 3.2 keeps the mean, read back as grey
   const light_sample lr = read<thesis_light_buffer>(write<thesis_light_buffer>(ls));
   CHECK(lr.light == glm::vec3(1.0f, 128.0f / 255.0f, 0.0f));
-  CHECK(lr.specular == 64.0f / 255.0f);
+  CHECK(lr.specular == glm::vec3(64.0f / 255.0f));
+}
+
+static_assert(rgb_light_buffer::bytes_per_pixel == 8 && rgb_light_buffer::target_count == 2);
+
+TEST_CASE("the RGB-specular light buffer keeps the specular's colour through RGBA8", "[layout]") {
+  light_sample ls = shader::dst_light_sample_zero();
+  ls.light = {0.5f, 0.25f, 1.0f};
+  ls.specular = {1.0f, 0.5f, 0.0f};
+  const light_sample r = read<rgb_light_buffer>(write<rgb_light_buffer>(ls));
+  CHECK(r.light == glm::vec3(128.0f / 255.0f, 64.0f / 255.0f, 1.0f));
+  CHECK(r.specular == glm::vec3(1.0f, 128.0f / 255.0f, 0.0f));
+  const auto d = describe<rgb_light_buffer>();
+  REQUIRE(d.size() == 2);
+  CHECK(d[1].channels == std::vector<std::string>{"specular.r", "specular.g", "specular.b", "unused"});
 }
 
 // Issue 12: the compact layout holds Table 3.1's information in half the bytes, with the light buffer 12.

@@ -1589,6 +1589,54 @@ TEST_CASE("every deferred technique and effect draws the same picture with the c
       }
 }
 
+TEST_CASE("RGB specular keeps a coloured light's highlight in its colour, white its mean; forward shades as each",
+          "[render][specular]") {
+  scene s = example("pane.json");
+  for (light& l : s.lights) l.colour = {1.0f, 0.25f, 0.1f};
+  for (material& m : s.materials) {  // broad highlights everywhere
+    m.spec_intensity = 0.8f;
+    m.spec_power = 8.0f;
+  }
+  for (backend b : backends) {
+    options o = small(160, 90);
+    auto white = draw(b, s, o);
+    o.rgb_specular = true;
+    auto rgb = draw(b, s, o);
+    o.method = render::technique::forward_depth;
+    auto forward_rgb = draw(b, s, o);
+    o.rgb_specular = false;
+    auto forward_white = draw(b, s, o);
+    if (!white || !rgb || !forward_rgb || !forward_white) continue;
+    INFO(name(b));
+    CHECK(rmse(rgb->final_image, forward_rgb->final_image) < 2.0);
+    CHECK(rmse(white->final_image, forward_white->final_image) < 2.0);
+    // White specular adds the light's mean to every channel of a highlight, RGB mostly red: blue is dimmer
+    // with RGB wherever a highlight is, and nowhere brighter.
+    int dimmer = 0, brighter = 0;
+    for (std::size_t i = 0; i < white->final_image.rgba.size(); i += 4) {
+      const int d = int(rgb->final_image.rgba[i + 2]) - int(white->final_image.rgba[i + 2]);
+      dimmer += d < -2;
+      brighter += d > 2;
+    }
+    CHECK(dimmer > 20);
+    CHECK(brighter == 0);
+  }
+}
+
+TEST_CASE("the RGB-specular light buffer's plan: 8 bytes a pixel in two targets", "[specular][pipeline]") {
+  const scene s = example("pane.json");
+  options o = small(160, 90);
+  o.rgb_specular = true;
+  const pipeline_plan p = render::plan_of(s, o).pipeline;
+  CHECK(p.bytes_per_pixel == 16 + 8);
+  CHECK(p.target("light.RT1"));
+  REQUIRE(p.pass("compose"));
+  const std::vector<std::string>& reads = p.pass("compose")->reads;
+  CHECK(std::find(reads.begin(), reads.end(), "light.RT1") != reads.end());
+  o.layout = render::gbuffer_layout::compact;
+  CHECK(render::plan_of(s, o).pipeline.bytes_per_pixel == 8 + 8);
+}
+
 TEST_CASE("the compact layout's plan: 12 bytes a pixel with the light buffer, depth from the attachment", "[layout][compact][pipeline]") {
   const scene s = testing::effect_scene(testing::rung::particles);
   options o = small(160, 90);

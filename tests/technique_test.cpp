@@ -9,25 +9,29 @@
 using namespace dstrans;
 using namespace dstrans::shader;
 
-TEST_CASE("Phong (Eq. 2.1): diffuse N.L, white specular (R.V)^n, nothing facing away", "[phong]") {
+TEST_CASE("Phong (Eq. 2.1): diffuse N.L, specular (R.V)^n in the light's colour, nothing facing away", "[phong]") {
   const glm::vec3 n(0, 0, 1), light(1.0f, 0.5f, 0.0f);
   const glm::vec3 l = glm::normalize(glm::vec3(1, 0, 1));
   // Mirror direction of l about n is (-1, 0, 1)/sqrt2; looking from there, R.V = 1.
   light_sample s = dst_phong(n, l, glm::normalize(glm::vec3(-1, 0, 1)), 16.0f, light);
   CHECK(s.light.x == Approx(0.70710678f));
   CHECK(s.light.y == Approx(0.35355339f));
-  CHECK(s.specular == Approx(0.5f));  // mean of the light's RGB
+  CHECK(s.specular.x == Approx(1.0f));
+  CHECK(s.specular.y == Approx(0.5f));
+  CHECK(s.specular.z == 0.0f);
+  CHECK(dst_encode_white_specular(s.specular) == Approx(0.5f));  // the thesis's light buffer keeps the mean
   // Looking straight down the normal: R.V = cos 45 degrees.
   s = dst_phong(n, l, n, 2.0f, light);
-  CHECK(s.specular == Approx(0.5f * 0.5f));
+  CHECK(s.specular.x == Approx(0.5f));
+  CHECK(s.specular.y == Approx(0.5f * 0.5f));
   // Behind the surface, or grazing: nothing.
   s = dst_phong(n, -l, n, 2.0f, light);
   CHECK(s.light == glm::vec3(0.0f));
-  CHECK(s.specular == 0.0f);
+  CHECK(s.specular == glm::vec3(0.0f));
   CHECK(dst_phong(n, glm::vec3(1, 0, 0), n, 2.0f, light).light == glm::vec3(0.0f));
   // R.V <= 0 gives no specular for any power, including 0.
-  CHECK(dst_phong(n, l, glm::normalize(glm::vec3(1, 0, -1)), 0.0f, light).specular == 0.0f);
-  CHECK(dst_phong(n, l, n, 0.0f, light).specular == Approx(0.5f));
+  CHECK(dst_phong(n, l, glm::normalize(glm::vec3(1, 0, -1)), 0.0f, light).specular == glm::vec3(0.0f));
+  CHECK(dst_phong(n, l, n, 0.0f, light).specular == light);
 }
 
 TEST_CASE("attenuation and spot falloff", "[phong]") {
@@ -105,7 +109,7 @@ TEST_CASE("refraction offset, depth rejection and the compose blend (Eq. 3.3)", 
   t.alpha = 0.25f;
   light_sample lo = dst_light_sample_zero(), lt = dst_light_sample_zero();
   lo.light = {0.5f, 0.5f, 0.5f};
-  lo.specular = 0.2f;
+  lo.specular = glm::vec3(0.2f);
   lt.light = {1.0f, 1.0f, 1.0f};
   const glm::vec3 ambient(0.1f);
   CHECK(dst_shade(o, lo, ambient) == glm::vec3(0.6f + 0.1f));

@@ -27,7 +27,8 @@ struct frame {
   image final_image;
   std::vector<texel> final_texels;  // the final target as stored (RGBA8, or RGBA32F with float targets)
   // The raw targets, for checks of a pass against the CPU: deferred, the (first) G-buffer's four and the
-  // light buffer (Table 3.2, or float_light_buffer with float targets); forward, the lit colour, normal and
+  // light buffer's first target (Table 3.2, or float_light_buffer with float targets; with RGB specular, the
+  // light without the specular); forward, the lit colour, normal and
   // (with depth) depth targets.
   std::vector<std::vector<texel>> gbuffer;
   std::vector<texel> light_buffer;

@@ -24,7 +24,7 @@ const char* const usage =
     "       dstrans gen pipeline <scene.json> [--out DIR]   every shader the scene's pipeline compiles; with\n"
     "                                       --out one file each (<pass>.vert, <pass>.frag), else all printed\n"
     "layouts:    thesis (Table 3.1), compact (8 bytes, depth from the attachment), light (Table 3.2),\n"
-    "            shadow (Table 3.3)\n"
+    "            light-rgb (8 bytes, RGB specular), shadow (Table 3.3)\n"
     "predicates: rows (the thesis's), columns, checker, none\n"
     "versions:   330, 410 (samplers by name: set their units with glUniform1i), 450 (the default), vulkan\n";
 
@@ -44,6 +44,7 @@ const std::map<std::string, named_layout>& layouts() {
       {"thesis", entry<thesis_gbuffer>("gbuffer")},
       {"compact", entry<compact_gbuffer>("gbuffer")},
       {"light", entry<thesis_light_buffer>("light")},
+      {"light-rgb", entry<rgb_light_buffer>("light")},
       {"shadow", entry<thesis_shadow_map>("shadow")},
   };
   return table;

@@ -28,6 +28,8 @@ const char* const usage =
     "       [--frames N]   render N frames with the same resources; pass times are their medians\n"
     "       [--transmittance thesis|physical]   light through glass: min(I_L, C) (Eq. 3.2) or I_L C\n"
     "       [--float-targets]   light buffers and the final image in RGBA32F: no saturation, NaN kept\n"
+    "       [--specular white|rgb]   the light buffer's specular: Table 3.2's one number (4 bytes a pixel), or\n"
+    "                           RGB, a coloured light's highlight in its colour (8 bytes)\n"
     "       [--k N] [--layers forward|deferred|tailless|cheap|wboit]   hair (S1): fragments shaded fully, and\n"
     "                           the rest (wboit: weighted blended OIT instead of lists)\n"
     "       [--particles six-axes|four-axes|fourteen-axes|forward] [--volume-cells N]   particle systems\n"
@@ -103,6 +105,9 @@ int render(std::vector<std::string> args) {
     if (shadows == "off") o.shadows = render::shadow_mode::off;
     else if (shadows == "opaque") o.shadows = render::shadow_mode::opaque;
     else if (shadows != "transparent") throw usage_error{"--shadows must be off, opaque or transparent, not '" + shadows + "'"};
+    const std::string specular = take_option(args, "--specular", "white");
+    if (specular == "rgb") o.rgb_specular = true;
+    else if (specular != "white") throw usage_error{"--specular must be white or rgb, not '" + specular + "'"};
     o.float_targets = take_flag(args, "--float-targets");
     const scene_budget budget = take_budget(args);
     args = operands(args);

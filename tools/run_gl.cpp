@@ -42,7 +42,7 @@ void read_back(const gl::renderer& r, const scene& s, frame& out) {
     out.volume_texels.resize(t.volume_texel_count);
     glGetNamedBufferSubData(t.volume_texels, 0, GLsizeiptr(t.volume_texel_count * sizeof(glm::vec4)), out.volume_texels.data());
   }
-  const format final_format = final_target_desc(o.float_targets).fmt, light_format = light_targets(o.float_targets)[0].fmt;
+  const format final_format = final_target_desc(o.float_targets).fmt, light_format = light_targets(o)[0].fmt;
   out.final_image = to_image(out.final_texels, final_format, w, h, view_as::rgb);
   for (std::size_t k = 0; k < t.gbuffers.size(); ++k) {
     const std::string suffix = k ? "_2" : "";
@@ -55,7 +55,8 @@ void read_back(const gl::renderer& r, const scene& s, frame& out) {
     }
     const std::vector<texel> light = gl::read_texels(lb, 0);
     out.buffers.push_back({"light" + suffix, to_image(light, light_format, w, h, view_as::rgb)});
-    out.buffers.push_back({"specular" + suffix, to_image(light, light_format, w, h, view_as::alpha)});
+    out.buffers.push_back({"specular" + suffix, o.rgb_specular ? to_image(gl::read_texels(lb, 1), light_format, w, h, view_as::rgb)
+                                                               : to_image(light, light_format, w, h, view_as::alpha)});
   }
   if (t.shadow_picture.framebuffer)
     out.buffers.push_back({"shadow_colour", to_image(gl::read_texels(t.shadow_picture, 0), format::rgba8, o.shadow_size,

@@ -49,7 +49,7 @@ result<bool> read_back(vk::device& dev, const vk::renderer& r, const scene& s, f
   }
   const format final_format = final_target_desc(o.float_targets).fmt;
   out.final_image = to_image(out.final_texels, final_format, w, h, view_as::rgb);
-  const format light_format = light_targets(o.float_targets)[0].fmt;
+  const format light_format = light_targets(o)[0].fmt;
   std::vector<std::tuple<std::string, const vk::targets*, int, format, view_as>> wanted;
   if (plan.forward) {
     wanted = {{"colour", &t.lit, 0, t.lit.formats[0], view_as::rgb}, {"normals", &t.lit, 1, format::rgb10a2, view_as::rgb}};
@@ -61,7 +61,7 @@ result<bool> read_back(vk::device& dev, const vk::renderer& r, const scene& s, f
     wanted.push_back({"diffuse" + suffix, gb, 0, format::rgba8, view_as::rgb});
     if (o.layout == gbuffer_layout::thesis)  // the compact layout's normals are octahedral, its depth an attachment
       wanted.insert(wanted.end(), {{"normals" + suffix, gb, 1, format::rgb10a2, view_as::rgb}, {"depth" + suffix, gb, 3, format::r32f, view_as::depth}});
-    wanted.insert(wanted.end(), {{"light" + suffix, lb, 0, light_format, view_as::rgb}, {"specular" + suffix, lb, 0, light_format, view_as::alpha}});
+    wanted.insert(wanted.end(), {{"light" + suffix, lb, 0, light_format, view_as::rgb}, {"specular" + suffix, lb, o.rgb_specular ? 1 : 0, light_format, o.rgb_specular ? view_as::rgb : view_as::alpha}});
   }
   if (!plan.post.passes.empty()) {
     wanted.push_back({"composed", &t.composed, 0, final_format, view_as::rgb});

@@ -112,6 +112,7 @@ struct renderer::impl {
 
   void run(const scheduled_pass& pass, const draw_geometry& draw);
   void clear(const scheduled_pass& pass, const gl::targets& t) const;
+  void bind_textures(int first, const gl::targets& t) const;  // t's textures on units first, first + 1, ...
   void bind_gbuffer(int first, const gl::targets& g) const;
   void bind_shadow_map() const;
   void bind_layers() const;
@@ -151,7 +152,7 @@ result<bool> renderer::impl::make_programs() {
     for (shadow_mode k : all_lookups)
       if (plan.uses(k))
         made.push_back(keep(forward_light_progs[int(k)],
-                            program(forward_pass(sh, forward_stage::light, plan.forward_depth, k, o.physical_transmittance),
+                            program(forward_pass(sh, forward_stage::light, plan.forward_depth, k, o),
                                     std::string("forward light pass") + lookup_label(k))));
     made.push_back(keep(compose_prog, program(forward_pass(sh, forward_stage::blend, plan.forward_depth, shadow_mode::off), "forward blend pass")));
   } else {
@@ -297,7 +298,7 @@ result<bool> renderer::impl::make_sized() {
     auto g = make_targets(gbuffer_targets(o.layout), o.width, o.height, "gbuffer" + suffix, true);
     if (!g) return failure{g.error()};
     out.gbuffers.push_back(*g);
-    auto l = make_targets(light_targets(o.float_targets), o.width, o.height, "light buffer" + suffix, false);
+    auto l = make_targets(light_targets(o), o.width, o.height, "light buffer" + suffix, false);
     if (!l) return failure{l.error()};
     out.light_buffers.push_back(*l);
   }
@@ -350,15 +351,16 @@ void renderer::impl::destroy_sized() {
 }
 
 // A G-buffer's textures at `first` and up (the compact layout's depth attachment at its depth slot).
+void renderer::impl::bind_textures(int first, const gl::targets& t) const {
+  for (std::size_t k = 0; k < t.textures.size(); ++k) glBindTextureUnit(GLuint(first) + GLuint(k), t.textures[k]);
+}
+
 void renderer::impl::bind_gbuffer(int first, const gl::targets& g) const {
-  for (std::size_t t = 0; t < g.textures.size(); ++t) glBindTextureUnit(GLuint(first) + GLuint(t), g.textures[t]);
+  bind_textures(first, g);
   if (o.layout == gbuffer_layout::compact) glBindTextureUnit(GLuint(first + gbuffer_depth_slot), g.depth);
 }
 
-void renderer::impl::bind_shadow_map() const {
-  for (std::size_t t = 0; t < shadow_map.textures.size(); ++t)
-    glBindTextureUnit(GLuint(binding(slot::shadow_map)) + GLuint(t), shadow_map.textures[t]);
-}
+void renderer::impl::bind_shadow_map() const { bind_textures(binding(slot::shadow_map), shadow_map); }
 
 // What the k-buffer passes read and write: the lists, the G-buffer, the shadow map.
 void renderer::impl::bind_layers() const {
@@ -493,14 +495,13 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
       bind(out.composed);
       apply(pass.state);
       if (plan.forward) {
-        for (std::size_t t = 0; t < out.lit.textures.size(); ++t)
-          glBindTextureUnit(GLuint(binding(slot::forward_lit)) + GLuint(t), out.lit.textures[t]);
+        bind_textures(binding(slot::forward_lit), out.lit);
       } else {
         bind_gbuffer(binding(slot::gbuffer), out.gbuffers[0]);
-        glBindTextureUnit(GLuint(binding(slot::light)), out.light_buffers[0].textures[0]);
+        bind_textures(binding(slot::light), out.light_buffers[0]);
         if (plan.peeling) {
           bind_gbuffer(binding(slot::gbuffer2), out.gbuffers[1]);
-          glBindTextureUnit(GLuint(binding(slot::light2)), out.light_buffers[1].textures[0]);
+          bind_textures(binding(slot::light2), out.light_buffers[1]);
         }
       }
       glUseProgram(compose_prog);
@@ -605,7 +606,9 @@ void renderer::render(const camera& view, const draw_geometry& draw) {
   const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   for (const std::string& name : r.schedule.cleared)
     if (name == "volume texels") glClearNamedBufferData(r.out.volume_texels, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
-    else glClearNamedFramebufferfv(r.out.light_buffers[name == "light buffer" ? 0 : 1].framebuffer, GL_COLOR, 0, zero);
+    else
+      for (std::size_t k = 0; k < r.out.light_buffers[name == "light buffer" ? 0 : 1].textures.size(); ++k)
+        glClearNamedFramebufferfv(r.out.light_buffers[name == "light buffer" ? 0 : 1].framebuffer, GL_COLOR, GLint(k), zero);
   for (const scheduled_pass& pass : r.schedule.passes) {
     if (r.recorded.size() == r.timers.size()) r.timers.emplace_back();
     timer& t = r.timers[r.recorded.size()];

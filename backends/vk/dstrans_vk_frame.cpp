@@ -184,6 +184,7 @@ struct renderer::impl {
     scheduled_pass pass;
     const vk::targets* light_buffer;  // null: the volume texels
     std::vector<image_use> images;
+    std::vector<glm::vec4> zeros;  // one a light-buffer target
   };
   std::vector<frame_clear> clears;
   // What settle and rest build, kept so that recording a frame allocates nothing.
@@ -293,7 +294,7 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
     st.additive = true;
     for (shadow_mode k : all_lookups)
       if (plan.uses(k))
-        made.push_back(graphics(forward_light[int(k)], forward_pass(sh, forward_stage::light, plan.forward_depth, k, o.physical_transmittance),
+        made.push_back(graphics(forward_light[int(k)], forward_pass(sh, forward_stage::light, plan.forward_depth, k, o),
                                 {lit_formats[0]}, std::string("forward light pass") + lookup_label(k), st));
   }
   made.push_back(graphics(compose, plan.forward ? forward_pass(sh, forward_stage::blend, plan.forward_depth, shadow_mode::off)
@@ -455,7 +456,7 @@ result<bool> renderer::impl::make_sized() {
     auto g = dev.make_targets(gbuffer_targets(o.layout), o.width, o.height, "gbuffer" + suffix, true);
     if (!g) return failure{g.error()};
     out.gbuffers.push_back(*g);
-    auto l = dev.make_targets(light_targets(o.float_targets), o.width, o.height, "light buffer" + suffix, false);
+    auto l = dev.make_targets(light_targets(o), o.width, o.height, "light buffer" + suffix, false);
     if (!l) return failure{l.error()};
     out.light_buffers.push_back(*l);
   }
@@ -559,12 +560,14 @@ bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const
   if (!plan.forward) {
     const std::size_t layer = pass.step == pass_step::light ? std::size_t(pass.index) : 0;
     add_gbuffer(binding(slot::gbuffer), out.gbuffers[layer]);
-    b.images[binding(slot::light)] = &out.light_buffers[layer].colors[0];
+    for (std::size_t t = 0; t < out.light_buffers[layer].colors.size(); ++t)
+      b.images[binding(slot::light) + int(t)] = &out.light_buffers[layer].colors[t];
     b.images[binding(slot::peel_depth)] = o.layout == gbuffer_layout::compact ? &out.gbuffers[0].depth : &out.gbuffers[0].colors[3];
   }
   if (plan.peeling) {
     add_gbuffer(binding(slot::gbuffer2), out.gbuffers[1]);
-    b.images[binding(slot::light2)] = &out.light_buffers[1].colors[0];
+    for (std::size_t t = 0; t < out.light_buffers[1].colors.size(); ++t)
+      b.images[binding(slot::light2) + int(t)] = &out.light_buffers[1].colors[t];
   }
   for (std::size_t t = 0; t < out.lit.colors.size(); ++t) b.images[binding(slot::forward_lit) + int(t)] = &out.lit.colors[t];
   if (out.kbuffer_heads.view) {
@@ -672,8 +675,11 @@ result<bool> renderer::impl::make_sets() {
   for (const std::string& name : schedule.cleared) {
     const bool texels = name == "volume texels";
     frame_clear c{scheduled_pass("", "clear " + name, texels ? pass_kind::transfer : pass_kind::fullscreen, -1, {}, {name}),
-                  texels ? nullptr : &out.light_buffers[name == "light buffer" ? 0 : 1], {}};
-    if (c.light_buffer) add_attachments(c.images, *c.light_buffer);
+                  texels ? nullptr : &out.light_buffers[name == "light buffer" ? 0 : 1], {}, {}};
+    if (c.light_buffer) {
+      add_attachments(c.images, *c.light_buffer);
+      c.zeros.assign(c.light_buffer->colors.size(), glm::vec4(0.0f));
+    }
     clears.push_back(std::move(c));
   }
   for (std::size_t k = 0; k < schedule.passes.size(); ++k) {
@@ -936,7 +942,7 @@ result<std::unique_ptr<renderer>> renderer::create(device& dev, const scene& des
   p->vertices = vertices;
   p->slots = frames_in_flight;
   const std::vector<format> final_formats{final_target_desc(o.float_targets).fmt};
-  if (auto ok = p->make_pipelines(shaders, formats_of(gbuffer_targets(o.layout)), formats_of(light_targets(o.float_targets)),
+  if (auto ok = p->make_pipelines(shaders, formats_of(gbuffer_targets(o.layout)), formats_of(light_targets(o)),
                                   formats_of(forward_targets(p->plan.forward_depth, o.float_targets)), final_formats);
       !ok)
     return failure{ok.error()};
@@ -977,7 +983,7 @@ void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geomet
     if (!c.light_buffer) {
       vkCmdFillBuffer(cmd, r.out.volume_texels.handle, 0, VK_WHOLE_SIZE, 0u);
     } else {
-      r.dev.begin_rendering(cmd, *c.light_buffer, {glm::vec4(0.0f)}, true);
+      r.dev.begin_rendering(cmd, *c.light_buffer, c.zeros, true);
       r.dev.end_rendering(cmd);
     }
   }

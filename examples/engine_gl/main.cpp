@@ -310,7 +310,7 @@ dst_light_sample engine_light_at(ivec2 p) {
   vec4 l = texelFetch(engine_light, p, 0);
   dst_light_sample s;
   s.light = l.rgb;
-  s.specular = l.w;
+  s.specular = vec3(l.w);
   return s;
 }
 void main() {

@@ -303,6 +303,8 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_normal_unorm, dst_decode_normal).within("e", {0.0f, 1.0f}).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_normal_octahedral_unorm, dst_encode_normal_octahedral).within("n", unit_vector()).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_normal_octahedral_unorm, dst_decode_normal_octahedral).within("e", {0.0f, 1.0f}).yields(-1.0f, 1.0f),
+      DSTRANS_FORMULA(dst_white_specular, dst_encode_white_specular).within("s", {0.0f, 1.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_white_specular, dst_decode_white_specular).within("e", {0.0f, 1.0f}).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_spec_power_unorm, dst_encode_spec_power).within("p", {0.0f, 255.0f}).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_spec_power_unorm, dst_decode_spec_power).within("e", {0.0f, 1.0f}).yields(0.0f, 255.0f),
       DSTRANS_FORMULA(dst_interlace_rows, dst_rows_keep),

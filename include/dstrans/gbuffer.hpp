@@ -1,5 +1,6 @@
 // The thesis's layouts: G-buffer (Table 3.1), light accumulation buffer (Table 3.2)
-// and transparent shadow map (Table 3.3); and a compact G-buffer beside Table 3.1's.
+// and transparent shadow map (Table 3.3); a compact G-buffer beside Table 3.1's, and an RGB-specular light
+// buffer beside Table 3.2's.
 //
 //   static_assert(dstrans::thesis_gbuffer::bytes_per_pixel == 16);
 //   static_assert(dstrans::compact_gbuffer::bytes_per_pixel == 8);   // and depth from the depth attachment
@@ -28,6 +29,11 @@ using compact_gbuffer = layout<surface,
 // Table 3.2: light RGB and the white specular response, 4 bytes a pixel. Additive blending into RGBA8
 // saturates at 1, as in the thesis.
 using thesis_light_buffer = layout<light_sample, target<format::rgba8, field::light, field::specular>>;
+
+// Beyond the thesis: the specular response in RGB, so that a coloured light's highlight keeps its colour;
+// 8 bytes a pixel in two targets.
+using rgb_light_buffer = layout<light_sample, target<format::rgba8, field::light, unused<1>>,
+                                target<format::rgba8, field::specular_rgb, unused<1>>>;
 
 // Table 3.3: the occluder's depth, and the colour and alpha of a transparent occluder, 8 bytes a texel.
 using thesis_shadow_map = layout<surface,

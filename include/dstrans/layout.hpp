@@ -45,6 +45,9 @@ inline constexpr codec<glm::vec3> normal_unorm = DSTRANS_CODEC(glm::vec3, dst_no
 inline constexpr codec<glm::vec3> normal_octahedral_unorm{&text::dst_normal_octahedral_unorm, "dst_encode_normal_octahedral",
                                                           "dst_decode_normal_octahedral", nullptr, nullptr};
 inline constexpr codec<float> alpha_unorm = DSTRANS_CODEC(float, dst_alpha_unorm, dst_encode_alpha, dst_decode_alpha);
+// One channel for a vec3 in any format: the CPU side is the field's own (field::specular).
+inline constexpr codec<glm::vec3> white_specular{&text::dst_white_specular, "dst_encode_white_specular",
+                                                 "dst_decode_white_specular", nullptr, nullptr};
 inline constexpr codec<float> spec_power_unorm =
     DSTRANS_CODEC(float, dst_spec_power_unorm, dst_encode_spec_power, dst_decode_spec_power);
 
@@ -54,6 +57,14 @@ template <class T>
 constexpr int components() {
   if constexpr (std::is_same_v<T, float>) return 1;
   else return int(T::length());
+}
+
+// Whether field F's codec applies in a target of kind `kind`: in UNORM channels, and wherever F keeps its
+// value in fewer channels than the value has (the codec is then the only way in and out).
+template <class F>
+constexpr bool encodes(channel_kind kind) {
+  if constexpr (std::is_same_v<typename F::record, void>) return false;
+  else return F::unorm && (kind == channel_kind::unorm || F::channels != components<typename F::value_type>());
 }
 
 constexpr bool same_name(const char* a, const char* b) {
@@ -86,6 +97,16 @@ struct field_base {
   }
 };
 
+// A field that keeps a vec3 in fewer channels through `Codec`; the field itself stores and loads it on the CPU.
+template <class Record, int Channels, const codec<glm::vec3>* Codec>
+struct narrowed_field {
+  using record = Record;
+  using value_type = glm::vec3;
+  static constexpr int channels = Channels;
+  static constexpr int min_bits = 8;
+  static constexpr const codec<glm::vec3>* unorm = Codec;
+};
+
 }  // namespace detail
 
 // The fields dstrans knows; a layout stores each at most once.
@@ -102,14 +123,8 @@ struct normal : detail::field_base<surface, glm::vec3, &surface::normal, 8, &nor
   static constexpr const char* name = "normal";
   static constexpr const char* parts = "xyz";
 };
-// The normal in two channels, octahedrally (the compact layout); UNORM targets only, as a float target
-// would need the same two numbers unencoded, which no layout asks for yet.
-struct normal_octahedral {
-  using record = surface;
-  using value_type = glm::vec3;
-  static constexpr int channels = 2;
-  static constexpr int min_bits = 8;
-  static constexpr const codec<glm::vec3>* unorm = &normal_octahedral_unorm;
+// The normal in two channels, octahedrally (the compact layout), through its codec in every target.
+struct normal_octahedral : detail::narrowed_field<surface, 2, &normal_octahedral_unorm> {
   static constexpr const char* name = "normal";
   static constexpr const char* parts = "uv";
   static void store(const surface& r, glm::vec4& v, int offset, channel_kind) {
@@ -137,9 +152,21 @@ struct light : detail::field_base<light_sample, glm::vec3, &light_sample::light,
   static constexpr const char* name = "light";
   static constexpr const char* parts = "rgb";
 };
-struct specular : detail::field_base<light_sample, float, &light_sample::specular, 8> {
+// The thesis's white specular: one channel, the mean of the three (dst_encode_white_specular).
+struct specular : detail::narrowed_field<light_sample, 1, &white_specular> {
   static constexpr const char* name = "specular";
   static constexpr const char* parts = "";
+  static void store(const light_sample& r, glm::vec4& v, int offset, channel_kind) {
+    v[offset] = shader::dst_encode_white_specular(r.specular);
+  }
+  static void load(const glm::vec4& v, int offset, channel_kind, light_sample& r) {
+    r.specular = shader::dst_decode_white_specular(v[offset]);
+  }
+};
+// The specular response in three channels, coloured as the light is.
+struct specular_rgb : detail::field_base<light_sample, glm::vec3, &light_sample::specular, 8> {
+  static constexpr const char* name = "specular";
+  static constexpr const char* parts = "rgb";
 };
 }  // namespace field
 
@@ -400,8 +427,7 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
     using T = decltype(t);
     T::each_field([&](auto f, int) {
       using F = decltype(f);
-      if constexpr (!std::is_same_v<typename F::record, void>)
-        if (F::unorm && info(T::fmt).kind == channel_kind::unorm) src.add_shared(*F::unorm->text);
+      if constexpr (dstrans::detail::encodes<F>(info(T::fmt).kind)) src.add_shared(*F::unorm->text);
     });
   });
   const std::string fn = "dst_" + name, macro = "DSTRANS_" + detail::upper(name), rtype = rec.name;
@@ -416,7 +442,6 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
   code += "void " + fn + "_pack(" + rtype + " r, " + out_params + ") {\n";
   L::each_target([&](auto t, int i) {
     using T = decltype(t);
-    const bool unorm = info(T::fmt).kind == channel_kind::unorm;
     std::string parts;
     T::each_field([&](auto f, int) {
       using F = decltype(f);
@@ -425,7 +450,7 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
         for (int c = 0; c < F::channels; ++c) e += std::string(c ? ", " : "") + "0.0f";
       } else {
         e = std::string("r.") + F::name;
-        if (F::unorm && unorm) e = std::string(F::unorm->encode_name) + "(" + e + ")";
+        if constexpr (dstrans::detail::encodes<F>(info(T::fmt).kind)) e = std::string(F::unorm->encode_name) + "(" + e + ")";
       }
       parts += (parts.empty() ? "" : ", ") + e;
     });
@@ -436,12 +461,11 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
   code += "  " + rtype + " r = " + rtype + "_zero();\n";
   L::each_target([&](auto t, int i) {
     using T = decltype(t);
-    const bool unorm = info(T::fmt).kind == channel_kind::unorm;
     T::each_field([&](auto f, int offset) {
       using F = decltype(f);
       if constexpr (!std::is_same_v<typename F::record, void>) {
         std::string e = "t" + std::to_string(i) + "." + detail::swizzle(offset, F::channels);
-        if (F::unorm && unorm) e = std::string(F::unorm->decode_name) + "(" + e + ")";
+        if constexpr (dstrans::detail::encodes<F>(info(T::fmt).kind)) e = std::string(F::unorm->decode_name) + "(" + e + ")";
         code += std::string("  r.") + F::name + " = " + e + ";\n";
       }
     });

@@ -6,8 +6,8 @@
 //   glm::vec4 r = dstrans::shader::dst_light_reach(1, light_pos, dir, range, co, ci, p);   // to the light, amount
 //
 // Choices the thesis leaves open, documented here and tested:
-// - the specular term is white; its scalar is the mean of the light's RGB, so a white light of
-//   intensity 1 gives (R.V)^n;
+// - the specular term has the light's colour, (R.V)^n times the light's RGB; the thesis's light buffer keeps
+//   only its mean (field::specular), which an RGB-specular light buffer does not (field::specular_rgb);
 // - no light reaches a surface facing away (N.L <= 0), specular included;
 // - (R.V)^n is 0 where R.V <= 0, for every n (GLSL leaves pow(0, n) undefined); n = 0 gives 1 elsewhere;
 // - attenuation is (1 - d/range)^2 clamped to [0, 1]: 1 at the light, 0 at and past its range, so the
@@ -32,7 +32,7 @@ DST_FN dst_light_sample dst_phong(vec3 n, vec3 l, vec3 v, float spec_power, vec3
   vec3 r = n * (2.0f * ndotl) - l;
   float rdotv = dot(r, v);
   s.light = light * ndotl;
-  s.specular = rdotv > 0.0f ? pow(rdotv, spec_power) * ((light.x + light.y + light.z) * (1.0f / 3.0f)) : 0.0f;
+  s.specular = rdotv > 0.0f ? light * pow(rdotv, spec_power) : vec3(0.0f);
   return s;
 }
 )

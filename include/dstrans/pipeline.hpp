@@ -80,7 +80,8 @@ struct pipeline {
   static_assert(!refracts || interlaced, "refraction bends the light through transparent surfaces: it needs transparency");
   static_assert(!has_shadow_colour || has_shadows, "transparent shadows are shadows: they need the shadows effect");
 
-  static pipeline_plan plan() {
+  // `light`: the light buffer's targets (the thesis's by default; render::light_targets gives the others).
+  static pipeline_plan plan(const std::vector<target_desc>& light_descs = describe<thesis_light_buffer>()) {
     pipeline_plan p;
     p.on = set;
     auto add_targets = [&](const std::vector<target_desc>& descs, const std::string& name, bool shadow_map) {
@@ -98,7 +99,7 @@ struct pipeline {
     for (std::size_t i = 0; i < described.size(); ++i)
       for (const std::string& c : described[i].channels)
         if (c == "depth") depth = gbuffer[i];
-    const std::vector<std::string> light = add_targets(describe<thesis_light_buffer>(), "light", false);
+    const std::vector<std::string> light = add_targets(light_descs, "light", false);
     std::vector<std::string> shadow;
     if constexpr (has_shadows) {
       p.targets.push_back({"shadow.depth", info(format::r32f).name, info(format::r32f).bytes_per_pixel, true});
@@ -164,7 +165,7 @@ struct bits_set {
   static constexpr effects value{Bits};
 };
 template <unsigned Bits, class G>
-pipeline_plan plan_bits(unsigned bits) {
+pipeline_plan plan_bits(unsigned bits, const std::vector<target_desc>& light) {
   if constexpr (Bits == effects::all().bits + 1u) {
     return {};
   } else {
@@ -173,8 +174,8 @@ pipeline_plan plan_bits(unsigned bits) {
     constexpr effects e{Bits};
     if constexpr ((!e.has(effect::refraction) || e.has(effect::transparency)) &&
                   (!e.has(effect::transparent_shadows) || e.has(effect::shadows)))
-      if (bits == Bits) return pipeline<bits_set<Bits>, G>::plan();
-    return plan_bits<Bits + 1u, G>(bits);
+      if (bits == Bits) return pipeline<bits_set<Bits>, G>::plan(light);
+    return plan_bits<Bits + 1u, G>(bits, light);
   }
 }
 }  // namespace detail
@@ -187,11 +188,11 @@ constexpr effects completed(effects e) {
   return e;
 }
 
-// The plan for set `e` (completed) with G-buffer layout G, through the same pipeline<E, G>::plan() a
-// compile-time caller uses.
+// The plan for set `e` (completed) with G-buffer layout G and light-buffer targets `light`, through the
+// same pipeline<E, G>::plan() a compile-time caller uses.
 template <class G = thesis_gbuffer>
-pipeline_plan plan_pipeline(effects e) {
-  return detail::plan_bits<0u, G>(completed(e).bits);
+pipeline_plan plan_pipeline(effects e, const std::vector<target_desc>& light = describe<thesis_light_buffer>()) {
+  return detail::plan_bits<0u, G>(completed(e).bits, light);
 }
 
 }  // namespace dstrans

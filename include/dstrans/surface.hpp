@@ -34,16 +34,18 @@ DST_FN dst_surface dst_surface_zero() {
 )
 
 // What the light accumulation buffer holds for one pixel: the light that reached it (RGB, without the
-// surface's diffuse colour) and the white specular response (without the surface's spec_intensity).
+// surface's diffuse colour) and the specular response (RGB, without the surface's spec_intensity). The
+// thesis's light buffer keeps one number of the specular (field::specular, white); field::specular_rgb keeps
+// all three.
 DSTRANS_SHARED(dst_light_sample,
 struct dst_light_sample {
   vec3 light;
-  float specular;
+  vec3 specular;
 };
 DST_FN dst_light_sample dst_light_sample_zero() {
   dst_light_sample s;
   s.light = vec3(0.0f);
-  s.specular = 0.0f;
+  s.specular = vec3(0.0f);
   return s;
 }
 )
@@ -93,6 +95,13 @@ DST_FN float dst_encode_alpha(float alpha) {
   return alpha > 254.0f / 255.0f ? 254.0f / 255.0f : alpha;
 }
 DST_FN float dst_decode_alpha(float e) { return e; }
+)
+
+// The thesis's white specular (Table 3.2): one number for the three, their mean, read back as grey. A white
+// light's highlight keeps its value; a coloured light's comes out white at the light's mean intensity.
+DSTRANS_SHARED(dst_white_specular,
+DST_FN float dst_encode_white_specular(vec3 s) { return (s.x + s.y + s.z) * (1.0f / 3.0f); }
+DST_FN vec3 dst_decode_white_specular(float e) { return vec3(e); }
 )
 
 // A Phong exponent in a UNORM target: [0, 255] maps to [0, 1], so 8 bits keep every integer power.

@@ -56,11 +56,9 @@ dst_light_sample dst_other_light(ivec2 pixel) {
   dst_other_around(pixel, at, w);
   dst_light_sample p = dst_light_read(dst_interlace_partner(pixel, frame.size.xy));
   dst_light_sample a = dst_light_read(at[0]), b = dst_light_read(at[1]), c = dst_light_read(at[2]);
-  vec4 v = dst_reconstruct(vec4(p.light, p.specular), vec4(a.light, a.specular), vec4(b.light, b.specular),
-                           vec4(c.light, c.specular), w);
   dst_light_sample r;
-  r.light = v.xyz;
-  r.specular = v.w;
+  r.light = dst_reconstruct(vec4(p.light, 0.0f), vec4(a.light, 0.0f), vec4(b.light, 0.0f), vec4(c.light, 0.0f), w).xyz;
+  r.specular = dst_reconstruct(vec4(p.specular, 0.0f), vec4(a.specular, 0.0f), vec4(b.specular, 0.0f), vec4(c.specular, 0.0f), w).xyz;
   return r;
 }
 #else

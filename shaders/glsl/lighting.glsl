@@ -32,6 +32,8 @@ vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
 #endif
 
 // Light `l` at world point `p` with unit normal `n` and Phong exponent `spec_power`, seen from the camera.
+// Its specular is the thesis's white one unless DST_RGB_SPECULAR, as the light buffer keeps it, so that
+// forward rendering shades as the deferred light buffer does.
 dst_light_sample dst_light_at_point(dst_light_data l, vec3 p, vec3 n, float spec_power) {
   vec4 reach = dst_light_reach(int(l.direction_kind.w + 0.5f), l.position_range.xyz, l.direction_kind.xyz,
                                l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, p);
@@ -39,5 +41,9 @@ dst_light_sample dst_light_at_point(dst_light_data l, vec3 p, vec3 n, float spec
 #ifdef DST_SHADOWS
   if (l.cos_inner.y > 0.5f) light = dst_shadowed(light, p, l);
 #endif
-  return dst_phong(n, reach.xyz, normalize(frame.camera_position.xyz - p), spec_power, light);
+  dst_light_sample s = dst_phong(n, reach.xyz, normalize(frame.camera_position.xyz - p), spec_power, light);
+#ifndef DST_RGB_SPECULAR
+  s.specular = dst_decode_white_specular(dst_encode_white_specular(s.specular));
+#endif
+  return s;
 }

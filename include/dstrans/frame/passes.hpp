@@ -20,11 +20,13 @@
 
 namespace dstrans::render {
 
-// Table 3.2's fields in RGBA32F, for options::float_targets.
+// Table 3.2's and rgb_light_buffer's fields in RGBA32F, for options::float_targets.
 using float_light_buffer = layout<light_sample, target<format::rgba32f, field::light, field::specular>>;
-// The light buffer's targets, and its layout's GLSL, for the options' precision.
-std::vector<target_desc> light_targets(bool float_targets);
-void add_light_layout(glsl::source& src, const std::string& name, bool float_targets, const glsl::layout_options& o);
+using float_rgb_light_buffer = layout<light_sample, target<format::rgba32f, field::light, unused<1>>,
+                                      target<format::rgba32f, field::specular_rgb, unused<1>>>;
+// The light buffer's targets, and its layout's GLSL, for the options' precision and specular.
+std::vector<target_desc> light_targets(const options& o);
+void add_light_layout(glsl::source& src, const std::string& name, const options& o, const glsl::layout_options& lo);
 
 // Table 3.3 for transparent shadows; a plain depth map for opaque ones.
 using opaque_shadow_map = layout<surface, target<format::r32f, field::depth>>;
@@ -86,8 +88,9 @@ result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shaders, con
 
 // The forward renderer's passes: ambient (colour, normal, depth), one light, and the blend.
 enum class forward_stage { ambient, light, blend };
+// The options' transmittance and specular apply to the light stage.
 result<pass_sources> forward_pass(const pass_shaders& shaders, forward_stage stage, bool with_depth, shadow_mode mode,
-                                  bool physical_transmittance = false);
+                                  const options& o = {});
 // Its targets: lit colour and alpha (RGBA32F with float targets), the normal, and with depth the window depth.
 std::vector<target_desc> forward_targets(bool with_depth, bool float_targets = false);
 
@@ -193,13 +196,36 @@ inline result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode
   return pass_detail::scene_vertex(shaders, std::move(p));
 }
 
-inline std::vector<target_desc> light_targets(bool float_targets) {
-  return float_targets ? describe<float_light_buffer>() : describe<thesis_light_buffer>();
+namespace pass_detail {
+// The switches of lighting.glsl's dst_light_at_point that the options turn on.
+inline std::vector<std::string> light_switches(const options& o) {
+  std::vector<std::string> out;
+  if (o.physical_transmittance) out.push_back("DST_TRANSMITTANCE");
+  if (o.rgb_specular) out.push_back("DST_RGB_SPECULAR");
+  return out;
+}
+// Calls visit(L{}) with the light buffer layout L of the options.
+template <class Visit>
+void with_light_layout(const options& o, Visit&& visit) {
+  if (o.rgb_specular) {
+    if (o.float_targets) visit(float_rgb_light_buffer{});
+    else visit(rgb_light_buffer{});
+  } else if (o.float_targets) {
+    visit(float_light_buffer{});
+  } else {
+    visit(thesis_light_buffer{});
+  }
+}
+}  // namespace pass_detail
+
+inline std::vector<target_desc> light_targets(const options& o) {
+  std::vector<target_desc> out;
+  pass_detail::with_light_layout(o, [&](auto l) { out = describe<decltype(l)>(); });
+  return out;
 }
 
-inline void add_light_layout(glsl::source& src, const std::string& name, bool float_targets, const glsl::layout_options& o) {
-  if (float_targets) glsl::add_layout<float_light_buffer>(src, name, o);
-  else glsl::add_layout<thesis_light_buffer>(src, name, o);
+inline void add_light_layout(glsl::source& src, const std::string& name, const options& o, const glsl::layout_options& lo) {
+  pass_detail::with_light_layout(o, [&](auto l) { glsl::add_layout<decltype(l)>(src, name, lo); });
 }
 
 inline result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode mode, bool volume, const options& o) {
@@ -208,14 +234,14 @@ inline result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode 
   if (auto ok = pass_detail::finish(p.vertex, shaders, {"light.vert.glsl"}, volume ? std::vector<std::string>{"DST_LIGHT_VOLUME"} : std::vector<std::string>{}); !ok)
     return failure{ok.error()};
   std::vector<std::string> switches = pass_detail::shadow_switches(mode);
-  if (o.physical_transmittance) switches.push_back("DST_TRANSMITTANCE");
+  for (const std::string& s : pass_detail::light_switches(o)) switches.push_back(s);
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = binding(slot::gbuffer);
   add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
   glsl::layout_options write;
   write.sides = glsl::side::write;
-  add_light_layout(p.fragment, "light", o.float_targets, write);
+  add_light_layout(p.fragment, "light", o, write);
   if (mode != shadow_mode::off) pass_detail::add_shadow_layout(p.fragment, mode, glsl::side::read);
   if (mode == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
   if (auto ok = pass_detail::finish(p.fragment, shaders, {"lighting.glsl", "light.frag.glsl"}, switches); !ok) return failure{ok.error()};
@@ -230,7 +256,7 @@ inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on
   read.first_binding = binding(slot::gbuffer);
   add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
   read.first_binding = binding(slot::light);
-  add_light_layout(p.fragment, "light", o.float_targets, read);
+  add_light_layout(p.fragment, "light", o, read);
   std::vector<std::string> switches;
   for (effect e : {effect::transparency, effect::refraction})
     if (on.has(e)) switches.push_back(effect_switch(e));
@@ -242,7 +268,7 @@ inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on
     read.first_binding = binding(slot::gbuffer2);
     add_gbuffer_layout(p.fragment, o.layout, "gbuffer2", read);
     read.first_binding = binding(slot::light2);
-    add_light_layout(p.fragment, "light2", o.float_targets, read);
+    add_light_layout(p.fragment, "light2", o, read);
     other = "peeled.glsl";
   }
   // Without transparency the compose pass never asks for the other layer.
@@ -394,13 +420,13 @@ inline std::vector<target_desc> forward_targets(bool with_depth, bool float_targ
 }
 
 inline result<pass_sources> forward_pass(const pass_shaders& shaders, forward_stage stage, bool with_depth, shadow_mode mode,
-                                  bool physical_transmittance) {
+                                         const options& o) {
   pass_sources p;
   std::vector<std::string> switches;
   if (with_depth) switches.push_back("DST_FORWARD_DEPTH");
   if (stage == forward_stage::light) {
     for (const std::string& s : pass_detail::shadow_switches(mode)) switches.push_back(s);
-    if (physical_transmittance) switches.push_back("DST_TRANSMITTANCE");
+    for (const std::string& s : pass_detail::light_switches(o)) switches.push_back(s);
     if (mode != shadow_mode::off) pass_detail::add_shadow_layout(p.fragment, mode, glsl::side::read);
   }
   glsl::add_interlace<pass_detail::I>(p.fragment);

@@ -69,6 +69,9 @@ struct options {
   // Light buffers and the final image in RGBA32F instead of RGBA8: additive light does not saturate at 1
   // and a NaN or infinity stays visible instead of being stored as 0 (for checking a frame's numbers).
   bool float_targets = false;
+  // The light buffer's specular in RGB (rgb_light_buffer, 8 bytes a pixel) instead of the thesis's white
+  // (thesis_light_buffer, 4): a coloured light's highlight keeps its colour. Forward rendering follows it.
+  bool rgb_specular = false;
   // The k-buffer (many_layers): how many nearest fragments a pixel shades fully (1 to
   // 32), and how the rest are shaded: the forward reference (all in order, all shaded fully), deferred
   // (the tail cheaply), tailless (the tail's opacity only), cheap (everything cheaply), or weighted
@@ -327,7 +330,8 @@ inline frame_plan plan_of(const scene& s, const options& o) {
   if (o.shadows == shadow_mode::off) e = e.without(effect::shadows);
   e.bits |= o.force.bits;  // forced code runs even where the options leave its effect nothing to do
   p.on = completed(e);
-  p.pipeline = o.layout == gbuffer_layout::compact ? plan_pipeline<compact_gbuffer>(p.on) : plan_pipeline<thesis_gbuffer>(p.on);
+  const std::vector<target_desc> light_descs = o.rgb_specular ? describe<rgb_light_buffer>() : describe<thesis_light_buffer>();
+  p.pipeline = o.layout == gbuffer_layout::compact ? plan_pipeline<compact_gbuffer>(p.on, light_descs) : plan_pipeline<thesis_gbuffer>(p.on, light_descs);
   p.shadows = !p.on.has(effect::shadows)                ? shadow_mode::off
               : p.on.has(effect::transparent_shadows) ? shadow_mode::transparent
                                                       : shadow_mode::opaque;

@@ -19,7 +19,7 @@ namespace dstrans {
 enum class slot {
   gbuffer,           // the G-buffer's targets (a compact layout's depth attachment at its fourth)
   shadow_map,        // the shadow map's depth and colour
-  light,             // the light buffer
+  light,             // the light buffer's targets (two with RGB specular)
   light2,            // depth peeling: the second layer's light buffer
   gbuffer2,          // depth peeling: the second layer's G-buffer
   peel_depth,        // depth peeling: the first layer's depth, which the second peels behind
@@ -55,12 +55,12 @@ struct slot_desc {
 inline constexpr slot_desc slot_table[] = {
     {slot::gbuffer, "GBUFFER", 0, 4, slot_kind::texture},
     {slot::shadow_map, "SHADOW_MAP", 4, 2, slot_kind::texture},
-    {slot::light, "LIGHT", 6, 1, slot_kind::texture},
-    {slot::light2, "LIGHT2", 7, 1, slot_kind::texture},
-    {slot::gbuffer2, "GBUFFER2", 8, 4, slot_kind::texture},
-    {slot::peel_depth, "PEEL_DEPTH", 13, 1, slot_kind::texture},
-    {slot::kbuffer_tail, "KBUFFER_TAIL", 14, 2, slot_kind::texture},
-    {slot::forward_lit, "FORWARD_LIT", 16, 3, slot_kind::texture},
+    {slot::light, "LIGHT", 6, 2, slot_kind::texture},
+    {slot::light2, "LIGHT2", 8, 2, slot_kind::texture},
+    {slot::gbuffer2, "GBUFFER2", 10, 4, slot_kind::texture},
+    {slot::peel_depth, "PEEL_DEPTH", 14, 1, slot_kind::texture},
+    {slot::kbuffer_tail, "KBUFFER_TAIL", 15, 2, slot_kind::texture},
+    {slot::forward_lit, "FORWARD_LIT", 17, 3, slot_kind::texture},
     {slot::frame, "FRAME", 20, 1, slot_kind::uniform_block},
     {slot::materials, "MATERIALS", 21, 1, slot_kind::storage_block},
     {slot::lights, "LIGHTS", 22, 1, slot_kind::storage_block},
