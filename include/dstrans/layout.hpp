@@ -427,7 +427,8 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
     using T = decltype(t);
     T::each_field([&](auto f, int) {
       using F = decltype(f);
-      if constexpr (dstrans::detail::encodes<F>(info(T::fmt).kind)) src.add_shared(*F::unorm->text);
+      if constexpr (!std::is_same_v<typename F::record, void>)
+        if (dstrans::detail::encodes<F>(info(T::fmt).kind)) src.add_shared(*F::unorm->text);
     });
   });
   const std::string fn = "dst_" + name, macro = "DSTRANS_" + detail::upper(name), rtype = rec.name;
@@ -450,7 +451,7 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
         for (int c = 0; c < F::channels; ++c) e += std::string(c ? ", " : "") + "0.0f";
       } else {
         e = std::string("r.") + F::name;
-        if constexpr (dstrans::detail::encodes<F>(info(T::fmt).kind)) e = std::string(F::unorm->encode_name) + "(" + e + ")";
+        if (dstrans::detail::encodes<F>(info(T::fmt).kind)) e = std::string(F::unorm->encode_name) + "(" + e + ")";
       }
       parts += (parts.empty() ? "" : ", ") + e;
     });
@@ -465,7 +466,7 @@ void add_layout(source& src, const std::string& name, const layout_options& opt 
       using F = decltype(f);
       if constexpr (!std::is_same_v<typename F::record, void>) {
         std::string e = "t" + std::to_string(i) + "." + detail::swizzle(offset, F::channels);
-        if constexpr (dstrans::detail::encodes<F>(info(T::fmt).kind)) e = std::string(F::unorm->decode_name) + "(" + e + ")";
+        if (dstrans::detail::encodes<F>(info(T::fmt).kind)) e = std::string(F::unorm->decode_name) + "(" + e + ")";
         code += std::string("  r.") + F::name + " = " + e + ";\n";
       }
     });
