@@ -57,10 +57,11 @@ def main():
     w = lines.append
     w("# dstrans bench: the thesis's comparisons on this machine")
     w("")
-    w("Backend %s, %s pixels, glass_room (58,792 triangles), the median of %d frames per run; times are GPU "
+    w("Backend %s on %s (%s), %s pixels, glass_room (58,792 triangles), the median of %d frames per run; times are GPU "
       "milliseconds per frame from timestamp queries. The reference for every error figure is deferred depth "
       "peeling at the same settings; RMSE is over 0-255 channel values, on all pixels and on pixels the "
-      "reference's first layer covers with glass." % (first["backend"], size, first["settings"]["frames"]))
+      "reference's first layer covers with glass." % (first["backend"], first["device"], first["driver"], size,
+                                                     first["settings"]["frames"]))
     w("")
     w("A CPU rasteriser is not a GTX 760: llvmpipe shades in JIT-compiled SIMD code on %s cores, so "
       "fragment work and memory traffic weigh far more, and fixed costs (a draw, a pass) far less, than on the "

@@ -212,3 +212,29 @@ TEST_CASE("GL: clip-space +y is the image's top row and counter-clockwise triang
   gl::destroy(*t);
   check_quiet(*ctx);
 }
+
+TEST_CASE("GL: EGL's devices are listed, and a context is made on one by index or by name", "[gl][device]") {
+  const auto devices = gl::headless_context::devices();
+  REQUIRE(devices);
+  if (devices->empty()) {
+    WARN("skipped: this EGL has no EGL_EXT_device_enumeration");
+    return;
+  }
+  CHECK(devices->front().rfind("0: ", 0) == 0);
+  auto by_index = gl::headless_context::create("0");
+  REQUIRE(by_index);
+  const std::string renderer = (*by_index)->renderer(), version = (*by_index)->version();
+  CHECK(devices->front() == "0: " + renderer + ", " + version);
+  CHECK(version.find("4.5") == 0);
+  by_index->reset();  // one context at a time
+  auto by_name = gl::headless_context::create(renderer.substr(0, 4));
+  REQUIRE(by_name);
+  CHECK((*by_name)->renderer() == renderer);
+  by_name->reset();
+  const auto none = gl::headless_context::create("no such device");
+  REQUIRE_FALSE(none);
+  CHECK(none.error().find("no EGL device named 'no such device'; the devices are:\n  0: " + renderer) == 0);
+  const auto out_of_range = gl::headless_context::create(std::to_string(devices->size()));
+  REQUIRE_FALSE(out_of_range);
+  CHECK(out_of_range.error().find("no EGL device number '" + std::to_string(devices->size()) + "'") == 0);
+}

@@ -269,3 +269,30 @@ TEST_CASE("VK: images and buffers are slices of shared memory blocks, each freed
   dev.destroy(*t);
   CHECK(dev.memory_blocks() == before);
 }
+
+TEST_CASE("VK: the physical devices are listed, and a device is made on one by index or by name", "[vk][device]") {
+  const auto devices = vk::headless_device::devices();
+  REQUIRE(devices);
+  if (devices->empty()) {
+    WARN("skipped: no Vulkan device here");
+    return;
+  }
+  auto first = vk::headless_device::create(false);
+  REQUIRE(first);
+  const std::string name = (*first)->name(), driver = (*first)->driver();
+  CHECK(driver.size() > 1);
+  CHECK(devices->front().rfind("0: " + name + ", ", 0) == 0);
+  CHECK(devices->front().find(driver) != std::string::npos);
+  auto by_index = vk::headless_device::create(false, "0");
+  REQUIRE(by_index);
+  CHECK((*by_index)->name() == name);
+  auto by_name = vk::headless_device::create(false, name.substr(0, 4));
+  REQUIRE(by_name);
+  CHECK((*by_name)->name() == name);
+  const auto none = vk::headless_device::create(false, "no such device");
+  REQUIRE_FALSE(none);
+  CHECK(none.error().find("no Vulkan device named 'no such device'; the devices are:\n  " + devices->front()) == 0);
+  const auto out_of_range = vk::headless_device::create(false, std::to_string(devices->size()));
+  REQUIRE_FALSE(out_of_range);
+  CHECK(out_of_range.error().find("no Vulkan device number") == 0);
+}

@@ -38,9 +38,13 @@ namespace {
 using json = nlohmann::ordered_json;
 
 const char* const usage =
-    "usage: dstrans bench [--quick] --out DIR [--backend gl|vk]\n"
+    "usage: dstrans bench [--quick] --out DIR [--backend gl|vk] [--device N|NAME] [--width W --height H]\n"
+    "                     [--shadow-size N] [--frames N]\n"
     "renders glass_room and its variants with every technique and setting the thesis compared, and writes\n"
-    "DIR/results.json and DIR/report.md; --quick measures fewer light counts at a smaller size\n";
+    "DIR/results.json and DIR/report.md; --quick measures fewer light counts at a smaller size (320x180,\n"
+    "256^2 shadow maps, 5 frames a run; else 640x360, 512^2, 9), which the other options override. --device\n"
+    "chooses the GPU by index or part of its name for both APIs (`--device list` lists them); every record\n"
+    "names the device and driver it ran on\n";
 
 // Runs `argv` (found on the PATH) and waits for it: a failure unless it exits 0.
 result<bool> run_program(const std::vector<std::string>& argv) {
@@ -473,9 +477,19 @@ int bench(std::vector<std::string> args) {
     return 0;
   }
   try {
+    const std::string device = take_option(args, "--device", "");
+    if (device == "list") {
+      std::fputs(device_list().c_str(), stdout);
+      return 0;
+    }
     const std::string out = take_option(args, "--out", "");
     const std::string backend = take_option(args, "--backend", "gl");
     const bool quick = take_flag(args, "--quick");
+    render::options base;
+    base.width = to_int(take_option(args, "--width", quick ? "320" : "640"), 1, 8192, "--width");
+    base.height = to_int(take_option(args, "--height", quick ? "180" : "360"), 1, 8192, "--height");
+    base.shadow_size = to_int(take_option(args, "--shadow-size", quick ? "256" : "512"), 16, 8192, "--shadow-size");
+    base.frames = to_int(take_option(args, "--frames", quick ? "5" : "9"), 1, 1000, "--frames");
     for (const std::string& a : operands(args)) throw usage_error{"unknown argument '" + a + "'"};
     if (out.empty()) throw usage_error{"bench needs --out DIR"};
     if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
@@ -491,11 +505,12 @@ int bench(std::vector<std::string> args) {
       std::fprintf(stderr, "dstrans bench: %s\n", dir.error().c_str());
       return 1;
     }
-    auto g = open_gpu(backend);
+    auto g = open_gpu(backend, device);
     if (!g) {
       std::fprintf(stderr, "dstrans bench: %s\n", g.error().c_str());
       return 1;
     }
+    std::map<std::string, std::pair<std::string, std::string>> ran_on{{backend, {(*g)->device, (*g)->driver}}};
     std::map<std::string, scene> scenes;
     for (const char* name : {"glass_room", "glass_room_17", "glass_room_0"}) {
       auto s = load_scene(*shipped + "/scenes/" + name + ".json");
@@ -533,11 +548,6 @@ int bench(std::vector<std::string> args) {
     for (effect e : {effect::transparency, effect::refraction, effect::transparent_shadows})
       add({T::interlaced, "glass_room_0", fixed, S::transparent, true, effects{}.with(e)});
 
-    render::options base;
-    base.width = quick ? 320 : 640;
-    base.height = quick ? 180 : 360;
-    base.shadow_size = quick ? 256 : 512;
-    base.frames = quick ? 5 : 9;
     const bool tty = isatty(fileno(stderr));
     std::map<std::string, render::frame> references;
     json results = json::array();
@@ -644,12 +654,13 @@ int bench(std::vector<std::string> args) {
         return 1;
       }
     for (const std::string& b : {backend, std::string(backend == "gl" ? "vk" : "gl")}) {
-      auto other = b == backend ? result<std::unique_ptr<gpu>>(failure{"unused"}) : open_gpu(b);
+      auto other = b == backend ? result<std::unique_ptr<gpu>>(failure{"unused"}) : open_gpu(b, device);
       if (b != backend && !other) {
         std::fprintf(stderr, "dstrans bench: hair, smoke and post-processing on %s skipped: %s\n", b.c_str(), other.error().c_str());
         continue;
       }
       const gpu& on = b == backend ? **g : **other;
+      ran_on[b] = {on.device, on.driver};
       auto draw = [&](const scene& s, const render::options& o) -> result<render::frame> {
 #ifdef DSTRANS_HAVE_GL
         if (on.gl) return render::run_gl(s, o, pass_shaders());
@@ -693,6 +704,11 @@ int bench(std::vector<std::string> args) {
         return 1;
       }
       for (const json& r : *specular) results.push_back(r);
+    }
+    for (json& r : results) {
+      const auto& [name, driver] = ran_on.at(r["backend"].get<std::string>());
+      r["device"] = name;
+      r["driver"] = driver;
     }
     auto written = dir->add("results.json", results.dump(1) + "\n");
     // report.md and the plot come from results.json alone (bench/report.py, matplotlib); Debian's python3

@@ -17,6 +17,7 @@
 namespace dstrans::cli {
 
 struct gpu {
+  std::string device, driver;  // what it runs on, as the driver names it
 #ifdef DSTRANS_HAVE_GL
   std::unique_ptr<gl::headless_context> gl;  // current on this thread while it lives
 #endif
@@ -26,8 +27,11 @@ struct gpu {
 #endif
 };
 
-// A GPU for `backend` ("gl" or "vk"); a failure says why there is none ("no OpenGL: ...", or that the
-// build left the backend out).
-result<std::unique_ptr<gpu>> open_gpu(const std::string& backend);
+// A GPU for `backend` ("gl" or "vk") on `device` (headless_device::create and headless_context::create say
+// how it is chosen: "" the default, a number, or part of its name); a failure says why there is none
+// ("no OpenGL: ...", or that the build left the backend out).
+result<std::unique_ptr<gpu>> open_gpu(const std::string& backend, const std::string& device = "");
+// The devices each backend of the build can run on, as `--device list` prints them.
+std::string device_list();
 
 }  // namespace dstrans::cli

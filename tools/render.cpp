@@ -42,6 +42,8 @@ const char* const usage =
     "       [--layout thesis|compact]   the G-buffer: Table 3.1's 16 bytes, or 8 with depth from the attachment\n"
     "       [--budget MIB]   the memory a scene and its frame may take (default 1024), estimated before anything\n"
     "                           is built; a larger scene is refused with its estimate\n"
+    "       [--device N|NAME]   the GPU: by index or part of its name (Vulkan's physical devices, EGL's devices);\n"
+    "                           `dstrans render --device list` lists them\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
     "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
     "writes DIR/final.png (after the chain), a PNG per buffer and per effect (post_NAME.png), and DIR/frame.json\n"
@@ -54,6 +56,11 @@ int render(std::vector<std::string> args) {
     return 0;
   }
   try {
+    const std::string device = take_option(args, "--device", "");
+    if (device == "list") {
+      std::fputs(device_list().c_str(), stdout);
+      return 0;
+    }
     const std::string backend = take_option(args, "--backend", "");
     const std::string out = take_option(args, "--out", "");
     const std::string post_file = take_option(args, "--post", "");
@@ -144,7 +151,7 @@ int render(std::vector<std::string> args) {
       }
       s->post = *chain;
     }
-    auto g = open_gpu(backend);
+    auto g = open_gpu(backend, device);
     if (!g) {
       std::fprintf(stderr, "dstrans render: %s\n", g.error().c_str());
       return 1;
