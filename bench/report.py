@@ -44,12 +44,14 @@ def main():
     results_path, out = sys.argv[1], sys.argv[2]
     everything = json.load(open(results_path))
     results = [r for r in everything
-               if r["scene"] not in ("hair", "smoke", "glass_room_post", "glass_room_reconstruct", "glass_room_specular")]  # the thesis's comparisons
+               if r["scene"] not in ("hair", "smoke", "glass_room_post", "glass_room_reconstruct", "glass_room_specular",
+                                     "glass_room_paired")]  # the thesis's comparisons
     layers = [r for r in everything if r["scene"] == "hair"]   # S1
     volumes = [r for r in everything if r["scene"] == "smoke"]  # S2
     post = [r for r in everything if r["scene"] == "glass_room_post"]  # S3
     sweep = [r for r in everything if r["scene"] == "glass_room_reconstruct"]  # issue 12
     specular = [r for r in everything if r["scene"] == "glass_room_specular"]
+    paired = [r for r in everything if r["scene"] == "glass_room_paired"]
     lights = sorted({r["settings"]["lights"] for r in results})
     first = results[0]
     size = "%dx%d" % (first["settings"]["width"], first["settings"]["height"])
@@ -68,6 +70,9 @@ def main():
       "thesis's GPU; geometry passes over 59K triangles are cheap beside full-screen shading at this size. "
       "Ratios are the comparable figures; absolute times are not." % "2")
     w("")
+
+    if paired:
+        write_paired(w, paired)
 
     w("## Table 4.1: render targets and memory")
     w("")
@@ -486,6 +491,35 @@ def write_sweep(w, sweep):
               thesis["bytes_per_pixel"]))
         w("")
     w("![RMSE on glass against frame time](reconstruction.png)")
+    w("")
+
+
+def met(r):
+    """Whether the ratio's whole 95% interval meets its target: yes, no, or unclear where it straddles it."""
+    if r["target"] is None:
+        return "-"
+    if "at_least" in r["target"]:
+        bound = r["target"]["at_least"]
+        return "yes" if r["low"] >= bound else "no" if r["high"] < bound else "unclear"
+    bound = r["target"]["at_most"]
+    return "yes" if r["high"] <= bound else "no" if r["low"] > bound else "unclear"
+
+
+def write_paired(w, rows):
+    w("## The targets, timed in pairs")
+    w("")
+    w("Each ratio is B's median frame over A's (for example peeling's time over interlacing's), the two "
+      "configurations' frames rendered alternately (A B, B A, ...) after two warm-up pairs, so that what else "
+      "the machine does slows both alike; the interval is 95%%, from %d bootstrap resamples of the pairs. A "
+      "target is met when the whole interval meets it." % 2000)
+    w("")
+    w("| comparison | lights | A ms | B ms | ratio | 95% interval | target | met |")
+    w("|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        t = r["target"]
+        target = "-" if t is None else (">= %.2f" % t["at_least"] if "at_least" in t else "<= %.2f" % t["at_most"])
+        w("| %s | %d | %.2f | %.2f | %.3f | [%.3f, %.3f] | %s | %s |" % (
+            r["technique"], r["settings"]["lights"], r["a_ms"], r["b_ms"], r["ratio"], r["low"], r["high"], target, met(r)))
     w("")
 
 

@@ -1825,3 +1825,73 @@ TEST_CASE("a camera looking straight down sees the scene, on both backends", "[r
     CHECK(colours.size() > 50);  // the floor, the sphere, the glass and their light; not one flat colour
   }
 }
+
+TEST_CASE("paired timing: B's median over A's, its interval from the pairs, warm-up left out, order alternating",
+          "[bench]") {
+  const cli::paired_ratio flat = cli::ratio_of({10, 10, 10, 10}, {20, 20, 20, 20});
+  CHECK(flat.ratio == 2.0);
+  CHECK(flat.low == 2.0);
+  CHECK(flat.high == 2.0);
+  CHECK(flat.frames == 4);
+  // Noise that hits both frames of a pair cancels: every resample's ratio is exactly 2.
+  std::vector<double> a, b;
+  for (int i = 0; i < 15; ++i) {
+    a.push_back(10.0 + double((i * 7) % 5));
+    b.push_back(2.0 * a.back());
+  }
+  const cli::paired_ratio shared = cli::ratio_of(a, b);
+  CHECK(shared.ratio == 2.0);
+  CHECK(shared.low == 2.0);
+  CHECK(shared.high == 2.0);
+  // Noise of its own widens the interval around the ratio.
+  b[0] = 100.0;
+  b[1] = 1.0;
+  const cli::paired_ratio noisy = cli::ratio_of(a, b);
+  CHECK(noisy.low <= noisy.ratio);
+  CHECK(noisy.ratio <= noisy.high);
+  CHECK(noisy.low < noisy.high);
+  CHECK(cli::ratio_of({}, {}).frames == 0);
+
+  std::string order;
+  int calls = 0;
+  const cli::frame_clock ca = [&]() -> result<double> { order += 'A'; return double(++calls); };
+  const cli::frame_clock cb = [&]() -> result<double> { order += 'B'; return 2.0 * double(++calls); };
+  const auto r = cli::time_paired(ca, cb, 1, 3);
+  REQUIRE(r);
+  CHECK(order == "ABBAABBA");
+  CHECK(r->frames == 3);
+  const cli::frame_clock broken = []() -> result<double> { return failure{"lost the device"}; };
+  const auto failed = cli::time_paired(ca, broken, 0, 2);
+  REQUIRE_FALSE(failed);
+  CHECK(failed.error() == "lost the device");
+}
+
+TEST_CASE("a frame clock renders a frame a call and gives its GPU time, on GL and Vulkan", "[bench][render]") {
+  const scene s = example("pane.json");
+  const options o = small(64, 36);
+  auto check_clock = [](const result<cli::frame_clock>& clock) {
+    REQUIRE(clock);
+    for (int i = 0; i < 2; ++i) {
+      const result<double> ms = (*clock)();
+      REQUIRE(ms);
+      CHECK(std::isfinite(*ms));
+      CHECK(*ms > 0.0);
+    }
+  };
+  if (auto ctx = gl::headless_context::create()) {
+    check_clock(render::gl_clock(s, o, pass_shaders()));
+    CHECK((*ctx)->debug_messages().empty());
+  } else {
+    WARN("skipped GL: " << ctx.error());
+  }
+  if (auto hd = vk::headless_device::create(true)) {
+    {
+      auto dev = vk::device::create((*hd)->ctx());
+      REQUIRE(dev);
+      check_clock(render::vk_clock(**dev, s, o, pass_shaders()));
+    }
+    CHECK((*hd)->validation_messages().empty());
+  } else {
+    WARN("skipped VK: " << hd.error());
+  }
+}

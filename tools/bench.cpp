@@ -20,6 +20,7 @@
 #include "cli.hpp"
 #include "gpu.hpp"
 #include "output_dir.hpp"
+#include "paired.hpp"
 #include "leaks.hpp"
 #include <dstrans/frame/passes.hpp>
 #ifdef DSTRANS_HAVE_GL
@@ -469,6 +470,69 @@ result<json> specular_records(const scene& room, const render::options& base, co
   return records;
 }
 
+// The targets' ratios on glass_room (scene "glass_room_paired"), each pair of configurations timed frame
+// against frame (paired.hpp) with its 95% interval, and the target it is held to (null where none applies).
+template <class Clock>
+result<json> paired_records(const scene& room, const render::options& base, const std::vector<int>& lights, bool quick,
+                            const std::string& backend, Clock&& clock) {
+  using T = render::technique;
+  using S = render::shadow_mode;
+  auto with = [&](T t, S shadows, bool refraction) {
+    render::options o = base;
+    o.method = t;
+    o.shadows = shadows;
+    o.refraction = refraction ? 8.0f : 0.0f;
+    return o;
+  };
+  json records = json::array();
+  auto measure = [&](const std::string& comparison, int n, const render::options& a, const render::options& b,
+                     const char* bound, double target, bool applies) -> result<bool> {
+    const scene s = with_lights(room, n);
+    auto ca = clock(s, a);
+    if (!ca) return failure{ca.error()};
+    auto cb = clock(s, b);
+    if (!cb) return failure{cb.error()};
+    auto r = cli::time_paired(*ca, *cb, 2, quick ? 5 : 15);
+    if (!r) return failure{r.error()};
+    records.push_back({{"technique", comparison},
+                       {"scene", "glass_room_paired"},
+                       {"backend", backend},
+                       {"settings", {{"lights", n}, {"width", base.width}, {"height", base.height}, {"frames", r->frames}}},
+                       {"a_ms", r->a_ms},
+                       {"b_ms", r->b_ms},
+                       {"ratio", r->ratio},
+                       {"low", r->low},
+                       {"high", r->high},
+                       {"target", applies ? json{{bound, target}} : json(nullptr)}});
+    return true;
+  };
+  for (int n : lights) {
+    if (n > 0)
+      if (auto ok = measure("peeling / interlaced, transparent shadows", n, with(T::interlaced, S::transparent, true),
+                            with(T::peeling, S::transparent, true), "at_least", 1.6, true);
+          !ok)
+        return failure{ok.error()};
+    if (auto ok = measure("peeling / interlaced, no shadows", n, with(T::interlaced, S::off, true), with(T::peeling, S::off, true),
+                          "at_least", 2.0, true);
+        !ok)
+      return failure{ok.error()};
+    if (auto ok = measure("forward-depth / interlaced, no shadows", n, with(T::interlaced, S::off, true),
+                          with(T::forward_depth, S::off, true), "at_least", 1.0, n >= 4);
+        !ok)
+      return failure{ok.error()};
+  }
+  if (auto ok = measure("refraction / none, no lights", 0, with(T::interlaced, S::off, false), with(T::interlaced, S::off, true),
+                        "at_most", 1.05, true);
+      !ok)
+    return failure{ok.error()};
+  for (int n : {2, lights.back()})
+    if (auto ok = measure("transparent / opaque shadows", n, with(T::interlaced, S::opaque, true), with(T::interlaced, S::transparent, true),
+                          "at_most", n == 2 ? 1.05 : 1.15, n == 2 || n == 64);
+        !ok)
+      return failure{ok.error()};
+  return records;
+}
+
 }  // namespace
 
 int bench(std::vector<std::string> args) {
@@ -644,6 +708,21 @@ int bench(std::vector<std::string> args) {
                    f->frame_ms, e.rmse, tty ? "" : "\n");
     }
     if (tty) std::fputc('\n', stderr);
+    auto clock = [&](const scene& s, const render::options& o) -> result<frame_clock> {
+#ifdef DSTRANS_HAVE_GL
+      if ((*g)->gl) return render::gl_clock(s, o, pass_shaders());
+#endif
+#ifdef DSTRANS_HAVE_VK
+      if ((*g)->vk) return render::vk_clock(*(*g)->vk, s, o, pass_shaders());
+#endif
+      return failure{"no backend"};
+    };
+    auto paired = paired_records(scenes.at("glass_room"), base, lights, quick, backend, clock);
+    if (!paired) {
+      std::fprintf(stderr, "dstrans bench: paired runs on %s: %s\n", backend.c_str(), paired.error().c_str());
+      return 1;
+    }
+    for (const json& r : *paired) results.push_back(r);
     // S1: many layers on hair.json, and S2: light volumes on smoke.json, on this backend and on the other
     // where the machine has it.
     auto hair = load_scene(*shipped + "/scenes/hair.json");

@@ -2,6 +2,7 @@
 #include "run_gl.hpp"
 
 #include <algorithm>
+#include <memory>
 
 #include <dstrans/frame/passes.hpp>
 #include <dstrans_gl_frame.hpp>
@@ -87,6 +88,21 @@ result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shade
   summarize(frames, totals, out);
   read_back(**r, s, out);
   return out;
+}
+
+result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_shaders& shaders) {
+  auto r = gl::renderer::create(s, o, shaders);
+  if (!r) return failure{r.error()};
+  struct running {
+    std::unique_ptr<gl::renderer> frames;
+    gl::scene_geometry meshes;
+    camera view;
+  };
+  auto on = std::shared_ptr<running>(new running{std::move(*r), gl::scene_geometry(s), s.view});
+  return cli::frame_clock([on]() -> result<double> {
+    on->frames->render(on->view, [&](const scheduled_pass& pass) { on->meshes(pass); });
+    return on->frames->times().frame_ms;
+  });
 }
 
 }  // namespace dstrans::render

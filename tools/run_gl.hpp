@@ -8,10 +8,13 @@
 #include <dstrans/scene.hpp>
 
 #include "frame_output.hpp"
+#include "paired.hpp"
 
 namespace dstrans::render {
 
 // The last of o.frames frames of `s` (times: their medians), with the pass shaders `shaders`.
 result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shaders);
+// One frame of `s` a call, each the GPU time of the whole frame, through a renderer the clock keeps (paired.hpp).
+result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_shaders& shaders);
 
 }  // namespace dstrans::render

@@ -2,6 +2,7 @@
 #include "run_vk.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <cstring>
 #include <tuple>
 
@@ -101,6 +102,25 @@ result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pa
   summarize(frames, totals, out);
   if (auto ok = read_back(dev, **r, s, out); !ok) return failure{ok.error()};
   return out;
+}
+
+result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders) {
+  auto r = vk::renderer::create(dev, s, o, shaders);
+  if (!r) return failure{r.error()};
+  auto meshes = vk::scene_geometry::create(dev, s);
+  if (!meshes) return failure{meshes.error()};
+  struct running {
+    std::unique_ptr<vk::renderer> frames;
+    std::unique_ptr<vk::scene_geometry> meshes;
+    camera view;
+  };
+  auto on = std::make_shared<running>(running{std::move(*r), std::move(*meshes), s.view});
+  return cli::frame_clock([on, &dev]() -> result<double> {
+    dev.submit([&](VkCommandBuffer cmd) {
+      on->frames->record(cmd, on->view, [&](VkCommandBuffer c, const scheduled_pass& pass) { (*on->meshes)(c, pass); });
+    });
+    return on->frames->times().frame_ms;
+  });
 }
 
 }  // namespace dstrans::render

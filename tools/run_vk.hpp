@@ -10,10 +10,14 @@
 #include <dstrans_vk.hpp>
 
 #include "frame_output.hpp"
+#include "paired.hpp"
 
 namespace dstrans::render {
 
 // The last of o.frames frames of `s` on `dev` (times: their medians), with the pass shaders `shaders`.
 result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);
+// One frame of `s` a call on `dev`, each the GPU time of the whole frame, through a renderer the clock keeps
+// (paired.hpp); `dev` outlives the clock.
+result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);
 
 }  // namespace dstrans::render

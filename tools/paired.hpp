@@ -1,0 +1,32 @@
+// Two configurations timed frame against frame. A and B alternate (A B B A, then again), so whatever else
+// the machine does slows both alike, and their ratio comes with a 95% interval from the pairs.
+//
+//   auto a = dstrans::render::gl_clock(room, interlaced, shaders), b = dstrans::render::gl_clock(room, peeling, shaders);
+//   auto r = dstrans::cli::time_paired(*a, *b, 2, 15);   // 2 warm-up pairs, then 15 measured
+//   std::printf("peeling takes %.2fx [%.2f, %.2f]\n", r->ratio, r->low, r->high);
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include <dstrans/result.hpp>
+
+namespace dstrans::cli {
+
+// One frame of a configuration: its GPU time in milliseconds, or why it failed.
+using frame_clock = std::function<result<double>()>;
+
+struct paired_ratio {
+  double ratio = 0.0;            // B's median frame over A's
+  double low = 0.0, high = 0.0;  // its 95% interval: the pairs resampled (bootstrap, a fixed seed)
+  int frames = 0;                // measured pairs
+  double a_ms = 0.0, b_ms = 0.0; // the medians
+};
+
+// The ratio of B's median to A's over pairs (a[i], b[i]), with its interval; frames 0 where there are no pairs.
+paired_ratio ratio_of(const std::vector<double>& a, const std::vector<double>& b);
+
+// `frames` pairs of A and B after `warmup` pairs that are not counted.
+result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, int frames);
+
+}  // namespace dstrans::cli
