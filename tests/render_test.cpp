@@ -1895,3 +1895,88 @@ TEST_CASE("a frame clock renders a frame a call and gives its GPU time, on GL an
     WARN("skipped VK: " << hd.error());
   }
 }
+
+TEST_CASE("a pass's limit: the bytes its resources hold, half read and half written, as a copy's time", "[bench]") {
+  const scene s = example("pane.json");
+  REQUIRE_FALSE(s.lights.empty());
+  options o = small(64, 36);
+  o.shadows = render::shadow_mode::transparent;
+  const std::size_t pixels = 64u * 36u, shadow_texels = std::size_t(o.shadow_size) * std::size_t(o.shadow_size);
+  const std::size_t gbuffer = thesis_gbuffer::bytes_per_pixel * pixels, light = thesis_light_buffer::bytes_per_pixel * pixels;
+  const render::frame_plan interlaced = render::plan_of(s, o);
+  CHECK(cli::resource_bytes("scene", interlaced, o) == 0);
+  CHECK(cli::resource_bytes("gbuffer", interlaced, o) == gbuffer);
+  CHECK(cli::resource_bytes("light buffer", interlaced, o) == light);
+  CHECK(cli::resource_bytes("shadow map", interlaced, o) == 8u * shadow_texels);  // R32F depth and RGBA8 colour
+  CHECK(cli::resource_bytes("frame", interlaced, o) == 4u * pixels);
+  const auto bytes = cli::timer_bytes(render::schedule_of(s, interlaced, o), interlaced, o);
+  CHECK(bytes.at("gbuffer") == gbuffer / 2);
+  CHECK(bytes.at("compose") == (gbuffer + light + 4u * pixels) / 2);
+  const std::size_t lights = s.lights.size(),
+                    shadowed = std::size_t(std::count(interlaced.lookups.begin(), interlaced.lookups.end(), render::shadow_mode::transparent));
+  REQUIRE(shadowed > 0);
+  CHECK(bytes.at("shadow") == shadowed * 8u * shadow_texels / 2);
+  CHECK(bytes.at("light") == (lights * (gbuffer + light) + shadowed * 8u * shadow_texels) / 2);
+  // Peeling's second layer reads the first G-buffer and writes its own.
+  o.method = render::technique::peeling;
+  const render::frame_plan peeling = render::plan_of(s, o);
+  CHECK(cli::timer_bytes(render::schedule_of(s, peeling, o), peeling, o).at("gbuffer") == (gbuffer + 2 * gbuffer) / 2);
+  o.method = render::technique::forward_depth;
+  o.float_targets = true;
+  const render::frame_plan forward = render::plan_of(s, o);
+  std::size_t lit = 0;
+  for (const target_desc& t : render::forward_targets(true, true)) lit += std::size_t(info(t.fmt).bytes_per_pixel) * pixels;
+  CHECK(cli::resource_bytes("lit", forward, o) == lit);
+  CHECK(cli::resource_bytes("frame", forward, o) == 16u * pixels);
+  // The k-buffer: heads, tail and transmittance, and k nodes a pixel.
+  options hair = small(64, 36);
+  const render::frame_plan layers = render::plan_of(example("hair.json"), hair);
+  CHECK(cli::resource_bytes("kbuffer", layers, hair) == (4u + 8u + 2u + 16u * std::size_t(hair.kbuffer_k)) * pixels);
+
+  int calls = 0;
+  cli::limit_meter meter([&](std::size_t b) -> result<double> {
+    ++calls;
+    return double(b) + double(calls % 3);  // five copies: b+1, b+2, b, b+1, b+2; the median is b+1
+  });
+  CHECK(*meter.copy_ms(0) == 0.0);
+  CHECK(calls == 0);
+  CHECK(*meter.copy_ms(100) == 101.0);
+  CHECK(calls == 5);
+  const auto limits = meter.limits({{"gbuffer", 100}, {"compose", 0}});
+  REQUIRE(limits);
+  CHECK(limits->at("gbuffer") == 101.0);  // measured once a size
+  CHECK(limits->at("compose") == 0.0);
+  CHECK(calls == 5);
+  cli::limit_meter broken([](std::size_t) -> result<double> { return failure{"lost the device"}; });
+  REQUIRE_FALSE(broken.limits({{"light", 8}}));
+}
+
+TEST_CASE("a copy clock copies any size, past its images' 32 MiB in several copies, on GL and Vulkan", "[bench][render]") {
+  auto check_clock = [](const cli::copy_clock& copy) {
+    for (std::size_t bytes : {std::size_t(1), std::size_t(1) << 20, (std::size_t(130) << 20) + 5}) {
+      INFO(bytes);
+      const result<double> ms = copy(bytes);
+      REQUIRE(ms);
+      CHECK(std::isfinite(*ms));
+      CHECK(*ms > 0.0);
+    }
+  };
+  if (auto ctx = gl::headless_context::create()) {
+    check_clock(render::gl_copy_clock());
+    CHECK((*ctx)->debug_messages().empty());
+  } else {
+    WARN("skipped GL: " << ctx.error());
+  }
+  if (auto hd = vk::headless_device::create(true)) {
+    {
+      auto dev = vk::device::create((*hd)->ctx());
+      REQUIRE(dev);
+      check_clock(render::vk_copy_clock(**dev));
+    }
+    const auto messages = (*hd)->validation_messages();
+    for (const std::string& m : messages) UNSCOPED_INFO(m);
+    CHECK(messages.empty());
+  } else {
+    WARN("skipped VK: " << hd.error());
+  }
+}

@@ -20,6 +20,7 @@
 #include "cli.hpp"
 #include "gpu.hpp"
 #include "output_dir.hpp"
+#include "limit.hpp"
 #include "paired.hpp"
 #include "leaks.hpp"
 #include <dstrans/frame/passes.hpp>
@@ -498,6 +499,10 @@ result<json> paired_records(const scene& room, const render::options& base, cons
                        {"scene", "glass_room_paired"},
                        {"backend", backend},
                        {"settings", {{"lights", n}, {"width", base.width}, {"height", base.height}, {"frames", r->frames}}},
+                       {"a", {{"technique", render::technique_name(a.method)}, {"shadows", render::shadow_name(a.shadows)},
+                              {"refraction", a.refraction > 0.0f}}},
+                       {"b", {{"technique", render::technique_name(b.method)}, {"shadows", render::shadow_name(b.shadows)},
+                              {"refraction", b.refraction > 0.0f}}},
                        {"a_ms", r->a_ms},
                        {"b_ms", r->b_ms},
                        {"ratio", r->ratio},
@@ -574,6 +579,16 @@ int bench(std::vector<std::string> args) {
       std::fprintf(stderr, "dstrans bench: %s\n", g.error().c_str());
       return 1;
     }
+    // Each pass's limit: a copy of its bytes on the same device, measured in this run.
+    limit_meter meter([&]() -> copy_clock {
+#ifdef DSTRANS_HAVE_GL
+      if ((*g)->gl) return render::gl_copy_clock();
+#endif
+#ifdef DSTRANS_HAVE_VK
+      if ((*g)->vk) return render::vk_copy_clock(*(*g)->vk);
+#endif
+      return [](std::size_t) -> result<double> { return failure{"no backend"}; };
+    }());
     std::map<std::string, std::pair<std::string, std::string>> ran_on{{backend, {(*g)->device, (*g)->driver}}};
     std::map<std::string, scene> scenes;
     for (const char* name : {"glass_room", "glass_room_17", "glass_room_0"}) {
@@ -684,6 +699,13 @@ int bench(std::vector<std::string> args) {
         if (!t.volume)  // the volume atlas is sized by particle systems, which these scenes do not have
           memory += std::int64_t(t.bytes_per_pixel) *
                   (t.shadow_map ? std::int64_t(base.shadow_size) * base.shadow_size : std::int64_t(base.width) * base.height);
+      const render::frame_plan ran = render::plan_of(s, options_of(c.method));
+      const auto moved = timer_bytes(render::schedule_of(s, ran, options_of(c.method)), ran, options_of(c.method));
+      auto limit = meter.limits(moved);
+      if (!limit) {
+        std::fprintf(stderr, "dstrans bench: the copies on %s: %s\n", backend.c_str(), limit.error().c_str());
+        return 1;
+      }
       json rec{{"technique", render::technique_name(c.method)},
                {"scene", c.scene},
                {"backend", backend},
@@ -696,6 +718,8 @@ int bench(std::vector<std::string> args) {
                {"frame_ms", f->frame_ms},
                {"frame_ms_spread", f->frame_ms_spread},
                {"pass_ms", f->pass_ms},
+               {"pass_bytes", moved},
+               {"limit_ms", *limit},
                {"bytes_per_pixel", bytes},
                {"render_targets", targets},
                {"reference", "deferred depth peeling"},

@@ -2,9 +2,11 @@
 #include "run_gl.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 
 #include <dstrans/frame/passes.hpp>
+#include <dstrans/fullscreen.hpp>
 #include <dstrans_gl_frame.hpp>
 
 namespace dstrans::render {
@@ -103,6 +105,58 @@ result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_s
     on->frames->render(on->view, [&](const scheduled_pass& pass) { on->meshes(pass); });
     return on->frames->times().frame_ms;
   });
+}
+
+cli::copy_clock gl_copy_clock() {
+  struct objects {
+    GLuint textures[2] = {0, 0}, framebuffer = 0, vertex_array = 0, program = 0;
+    ~objects() {
+      glDeleteTextures(2, textures);
+      glDeleteFramebuffers(1, &framebuffer);
+      glDeleteVertexArrays(1, &vertex_array);
+      glDeleteProgram(program);
+    }
+  };
+  static constexpr GLsizei width = 1024, rows = 2048;  // 32 MiB of RGBA32F each
+  static constexpr std::size_t row_bytes = std::size_t(width) * 16u, chunk = row_bytes * rows;
+  auto t = std::make_shared<objects>();
+  return [t](std::size_t bytes) -> result<double> {
+    if (!t->program) {
+      auto program = gl::make_program(glsl::fullscreen_vertex_shader(), cli::copy_fragment_shader(), "copy limit");
+      if (!program) return failure{program.error()};
+      t->program = *program;
+      glCreateTextures(GL_TEXTURE_2D, 2, t->textures);
+      const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      for (GLuint name : t->textures) {
+        glTextureStorage2D(name, 1, GL_RGBA32F, width, rows);
+        glClearTexImage(name, 0, GL_RGBA, GL_FLOAT, zero);
+      }
+      glCreateFramebuffers(1, &t->framebuffer);
+      glNamedFramebufferTexture(t->framebuffer, GL_COLOR_ATTACHMENT0, t->textures[1], 0);
+      glCreateVertexArrays(1, &t->vertex_array);
+      if (glGetError() != GL_NO_ERROR) return failure{"cannot make the copy's textures (32 MiB each)"};
+    }
+    gl::state_guard keep;
+    glBindFramebuffer(GL_FRAMEBUFFER, t->framebuffer);
+    glUseProgram(t->program);
+    glBindImageTexture(0, t->textures[0], 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_SCISSOR_TEST);
+    glViewport(0, 0, width, rows);
+    // Timed by the host between two glFinish: llvmpipe's timestamps do not see draws into one framebuffer
+    // that is not left between them, and on a GPU the wait adds one round trip to a copy of megabytes.
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t left = bytes; left > 0; left -= std::min(left, chunk)) {
+      glScissor(0, 0, width, GLsizei((std::min(left, chunk) + row_bytes - 1) / row_bytes));
+      gl::draw_fullscreen(t->vertex_array);
+    }
+    glFinish();
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  };
 }
 
 }  // namespace dstrans::render

@@ -8,6 +8,7 @@
 #include <dstrans/scene.hpp>
 
 #include "frame_output.hpp"
+#include "limit.hpp"
 #include "paired.hpp"
 
 namespace dstrans::render {
@@ -16,5 +17,8 @@ namespace dstrans::render {
 result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shaders);
 // One frame of `s` a call, each the GPU time of the whole frame, through a renderer the clock keeps (paired.hpp).
 result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_shaders& shaders);
+// Full-screen copies between two RGBA32F textures in the current context (limit.hpp): a size past their 32 MiB
+// takes as many copies, timed by the host between two glFinish.
+cli::copy_clock gl_copy_clock();
 
 }  // namespace dstrans::render

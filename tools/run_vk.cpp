@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include <dstrans/frame/passes.hpp>
+#include <dstrans/fullscreen.hpp>
 #include <dstrans_vk_frame.hpp>
 
 namespace dstrans::render {
@@ -121,6 +122,84 @@ result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options
     });
     return on->frames->times().frame_ms;
   });
+}
+
+cli::copy_clock vk_copy_clock(vk::device& dev) {
+  struct objects {
+    vk::device& dev;
+    vk::image from;
+    vk::targets to;
+    vk::pipeline copy;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    ~objects() {
+      if (pool) vkDestroyDescriptorPool(dev.ctx().device, pool, dev.ctx().allocator);
+      dev.destroy(copy);
+      dev.destroy(from);
+      dev.destroy(to);
+    }
+  };
+  static constexpr int width = 1024, rows = 2048;  // 32 MiB of RGBA32F each
+  static constexpr std::size_t row_bytes = std::size_t(width) * 16u, chunk = row_bytes * rows;
+  auto t = std::shared_ptr<objects>(new objects{dev, {}, {}, {}});
+  return [t](std::size_t bytes) -> result<double> {
+    vk::device& d = t->dev;
+    if (!t->copy.handle) {
+      auto vs = d.get_shader(glsl::fullscreen_vertex_shader(), spirv::stage::vertex, "copy limit (vertex)");
+      if (!vs) return failure{vs.error()};
+      auto fs = d.get_shader(cli::copy_fragment_shader(), spirv::stage::fragment, "copy limit (fragment)");
+      if (!fs) return failure{fs.error()};
+      auto p = d.make_graphics_pipeline(**vs, **fs, {format::rgba32f}, "copy limit");
+      if (!p) return failure{p.error()};
+      t->copy = *p;
+      auto from = d.make_storage_image(VK_FORMAT_R32G32B32A32_SFLOAT, width, rows, "copy source");
+      if (!from) return failure{from.error()};
+      t->from = *from;
+      auto to = d.make_targets({{format::rgba32f, {"r", "g", "b", "a"}}}, width, rows, "copy destination", false);
+      if (!to) return failure{to.error()};
+      t->to = *to;
+      VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1};
+      VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+      pci.maxSets = 1;
+      pci.poolSizeCount = 1;
+      pci.pPoolSizes = &size;
+      if (vkCreateDescriptorPool(d.ctx().device, &pci, d.ctx().allocator, &t->pool) != VK_SUCCESS) return failure{"no descriptor pool"};
+      VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+      ai.descriptorPool = t->pool;
+      ai.descriptorSetCount = 1;
+      ai.pSetLayouts = &t->copy.set_layout;
+      if (vkAllocateDescriptorSets(d.ctx().device, &ai, &t->set) != VK_SUCCESS) return failure{"no descriptor set"};
+      const VkDescriptorImageInfo info{VK_NULL_HANDLE, t->from.view, VK_IMAGE_LAYOUT_GENERAL};
+      VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+      write.dstSet = t->set;
+      write.descriptorCount = 1;
+      write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+      write.pImageInfo = &info;
+      vkUpdateDescriptorSets(d.ctx().device, 1, &write, 0, nullptr);
+      d.submit([&](VkCommandBuffer cmd) {  // defined texels to read
+        const VkClearColorValue zero{};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, t->from.handle, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+      });
+    }
+    return d.submit([&](VkCommandBuffer cmd) {
+      VkMemoryBarrier ready{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT};
+      for (std::size_t left = bytes; left > 0; left -= std::min(left, chunk)) {
+        // Each copy after what wrote its texels before: the clear, or the copy before it.
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                             VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, 1, &ready, 0,
+                             nullptr, 0, nullptr);
+        d.begin_rendering(cmd, t->to, {});
+        const VkRect2D rows_copied{{0, 0}, {std::uint32_t(width), std::uint32_t((std::min(left, chunk) + row_bytes - 1) / row_bytes)}};
+        vkCmdSetScissor(cmd, 0, 1, &rows_copied);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t->copy.handle);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t->copy.layout, 0, 1, &t->set, 0, nullptr);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        d.end_rendering(cmd);
+      }
+    });
+  };
 }
 
 }  // namespace dstrans::render

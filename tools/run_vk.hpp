@@ -10,6 +10,7 @@
 #include <dstrans_vk.hpp>
 
 #include "frame_output.hpp"
+#include "limit.hpp"
 #include "paired.hpp"
 
 namespace dstrans::render {
@@ -19,5 +20,8 @@ result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pa
 // One frame of `s` a call on `dev`, each the GPU time of the whole frame, through a renderer the clock keeps
 // (paired.hpp); `dev` outlives the clock.
 result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);
+// Full-screen copies between two RGBA32F images on `dev` (limit.hpp), which outlives the clock: a size past
+// their 32 MiB takes as many copies, all in one submission timed by its timestamps.
+cli::copy_clock vk_copy_clock(vk::device& dev);
 
 }  // namespace dstrans::render
