@@ -541,21 +541,23 @@ def write_paired(w, rows, results):
     w("")
     w("Each ratio is B's median frame over A's (for example peeling's time over interlacing's), the two "
       "configurations' frames rendered alternately (A B, B A, ...) after two warm-up pairs, so that what else "
-      "the machine does slows both alike; the interval is 95%%, from %d bootstrap resamples of the pairs. A "
+      "the machine does slows both alike; the interval is 95%%, from %d bootstrap resamples of the pairs, "
+      "and pairs are added (up to a maximum) until it is at most 3%% of the ratio wide. A "
       "target is met when the whole interval meets it. The bound is the best ratio this machine allows, from "
       "the sweep's runs of A and B and each pass's copy limit (next section): for a speed-up, B over A with "
       "every pass of A that B does not do alike at the speed of a copy of its bytes; for a cost, A plus the "
       "copy time of the bytes B moves beyond A's. \"bounded\": the target is missed and lies beyond the "
       "bound." % 2000)
     w("")
-    w("| comparison | lights | A ms | B ms | ratio | 95% interval | target | bound | met |")
-    w("|---|---|---|---|---|---|---|---|---|")
+    w("| comparison | lights | pairs | A ms | B ms | ratio | 95% interval | width | target | bound | met |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         t = r["target"]
         target = "-" if t is None else (">= %.2f" % t["at_least"] if "at_least" in t else "<= %.2f" % t["at_most"])
         limit = bound(r, results)
-        w("| %s | %d | %.2f | %.2f | %.3f | [%.3f, %.3f] | %s | %s | %s |" % (
-            r["technique"], r["settings"]["lights"], r["a_ms"], r["b_ms"], r["ratio"], r["low"], r["high"], target,
+        w("| %s | %d | %d | %.2f | %.2f | %.3f | [%.3f, %.3f] | %.1f%% | %s | %s | %s |" % (
+            r["technique"], r["settings"]["lights"], r["settings"]["frames"], r["a_ms"], r["b_ms"], r["ratio"], r["low"],
+            r["high"], 100.0 * r["spread"], target,
             "-" if limit is None else "%.3f" % limit, met(r, limit)))
     w("")
 

@@ -1833,6 +1833,7 @@ TEST_CASE("paired timing: B's median over A's, its interval from the pairs, warm
   CHECK(flat.low == 2.0);
   CHECK(flat.high == 2.0);
   CHECK(flat.frames == 4);
+  CHECK(flat.spread == 0.0);
   // Noise that hits both frames of a pair cancels: every resample's ratio is exactly 2.
   std::vector<double> a, b;
   for (int i = 0; i < 15; ++i) {
@@ -1856,12 +1857,21 @@ TEST_CASE("paired timing: B's median over A's, its interval from the pairs, warm
   int calls = 0;
   const cli::frame_clock ca = [&]() -> result<double> { order += 'A'; return double(++calls); };
   const cli::frame_clock cb = [&]() -> result<double> { order += 'B'; return 2.0 * double(++calls); };
-  const auto r = cli::time_paired(ca, cb, 1, 3);
+  // Times that grow share nothing a pair's partner has: the interval stays wide, so all 3 pairs are measured.
+  const auto r = cli::time_paired(ca, cb, 1, {2, 3, 0.03});
   REQUIRE(r);
   CHECK(order == "ABBAABBA");
   CHECK(r->frames == 3);
+  CHECK(r->spread > 0.03);
+  // Steady frames: the interval is the ratio alone once the first pairs are in.
+  const cli::frame_clock steady_a = []() -> result<double> { return 10.0; }, steady_b = []() -> result<double> { return 15.0; };
+  const auto steady = cli::time_paired(steady_a, steady_b, 0, {4, 50, 0.03});
+  REQUIRE(steady);
+  CHECK(steady->frames == 4);
+  CHECK(steady->ratio == 1.5);
+  CHECK(steady->spread == 0.0);
   const cli::frame_clock broken = []() -> result<double> { return failure{"lost the device"}; };
-  const auto failed = cli::time_paired(ca, broken, 0, 2);
+  const auto failed = cli::time_paired(ca, broken, 0, {2, 2, 0.03});
   REQUIRE_FALSE(failed);
   CHECK(failed.error() == "lost the device");
 }

@@ -493,7 +493,7 @@ result<json> paired_records(const scene& room, const render::options& base, cons
     if (!ca) return failure{ca.error()};
     auto cb = clock(s, b);
     if (!cb) return failure{cb.error()};
-    auto r = cli::time_paired(*ca, *cb, 2, quick ? 5 : 15);
+    auto r = cli::time_paired(*ca, *cb, 2, quick ? pair_count{5, 20, 0.03} : pair_count{15, 60, 0.03});
     if (!r) return failure{r.error()};
     records.push_back({{"technique", comparison},
                        {"scene", "glass_room_paired"},
@@ -508,6 +508,7 @@ result<json> paired_records(const scene& room, const render::options& base, cons
                        {"ratio", r->ratio},
                        {"low", r->low},
                        {"high", r->high},
+                       {"spread", r->spread},
                        {"target", applies ? json{{bound, target}} : json(nullptr)}});
     return true;
   };

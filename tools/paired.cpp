@@ -38,12 +38,13 @@ paired_ratio ratio_of(const std::vector<double>& a, const std::vector<double>& b
   std::sort(ratios.begin(), ratios.end());
   r.low = ratios[std::size_t(0.025 * double(ratios.size()))];
   r.high = ratios[std::size_t(0.975 * double(ratios.size())) - 1];
+  r.spread = r.ratio > 0.0 ? (r.high - r.low) / r.ratio : 0.0;
   return r;
 }
 
-result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, int frames) {
+result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, const pair_count& count) {
   std::vector<double> ta, tb;
-  for (int i = 0; i < warmup + frames; ++i) {
+  for (int i = 0; i < warmup + count.max_frames; ++i) {
     const bool a_first = i % 2 == 0;  // A B, then B A
     result<double> first = a_first ? a() : b();
     if (!first) return failure{first.error()};
@@ -52,6 +53,7 @@ result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int
     if (i < warmup) continue;
     ta.push_back(a_first ? *first : *second);
     tb.push_back(a_first ? *second : *first);
+    if (int(ta.size()) >= count.min_frames && ratio_of(ta, tb).spread <= count.spread) break;
   }
   return ratio_of(ta, tb);
 }

@@ -2,7 +2,7 @@
 // the machine does slows both alike, and their ratio comes with a 95% interval from the pairs.
 //
 //   auto a = dstrans::render::gl_clock(room, interlaced, shaders), b = dstrans::render::gl_clock(room, peeling, shaders);
-//   auto r = dstrans::cli::time_paired(*a, *b, 2, 15);   // 2 warm-up pairs, then 15 measured
+//   auto r = dstrans::cli::time_paired(*a, *b, 2, {15, 60, 0.03});   // 2 warm-up pairs, then 15 to 60 measured
 //   std::printf("peeling takes %.2fx [%.2f, %.2f]\n", r->ratio, r->low, r->high);
 #pragma once
 
@@ -21,12 +21,20 @@ struct paired_ratio {
   double low = 0.0, high = 0.0;  // its 95% interval: the pairs resampled (bootstrap, a fixed seed)
   int frames = 0;                // measured pairs
   double a_ms = 0.0, b_ms = 0.0; // the medians
+  double spread = 0.0;           // the interval's width over the ratio
+};
+
+// How many pairs to measure: at least `min_frames`, then more until the interval's width is at most
+// `spread` of the ratio, or `max_frames` are measured.
+struct pair_count {
+  int min_frames = 15, max_frames = 60;
+  double spread = 0.03;
 };
 
 // The ratio of B's median to A's over pairs (a[i], b[i]), with its interval; frames 0 where there are no pairs.
 paired_ratio ratio_of(const std::vector<double>& a, const std::vector<double>& b);
 
-// `frames` pairs of A and B after `warmup` pairs that are not counted.
-result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, int frames);
+// Pairs of A and B as `count` asks, after `warmup` pairs that are not counted.
+result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, const pair_count& count);
 
 }  // namespace dstrans::cli
