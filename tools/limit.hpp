@@ -1,5 +1,5 @@
-// How far a pass is from what the machine can do: the bytes its resources hold, and the GPU time of a
-// copy that reads and writes as many bytes, measured on the same device in the same run.
+// How far a pass is from what the machine can do: the bytes its resources hold, and the time of a copy
+// that reads and writes as many bytes, measured on the same device in the same run.
 //
 //   const auto plan = dstrans::render::plan_of(s, o);
 //   const auto bytes = dstrans::cli::timer_bytes(dstrans::render::schedule_of(s, plan, o), plan, o);
