@@ -1855,8 +1855,13 @@ TEST_CASE("paired timing: B's median over A's, its interval from the pairs, warm
 
   std::string order;
   int calls = 0;
-  const cli::frame_clock ca = [&]() -> result<double> { order += 'A'; return double(++calls); };
-  const cli::frame_clock cb = [&]() -> result<double> { order += 'B'; return 2.0 * double(++calls); };
+  auto frame_of = [](double ms) {
+    frame_times t;
+    t.frame_ms = ms;
+    return t;
+  };
+  const cli::frame_clock ca = [&]() -> result<frame_times> { order += 'A'; return frame_of(double(++calls)); };
+  const cli::frame_clock cb = [&]() -> result<frame_times> { order += 'B'; return frame_of(2.0 * double(++calls)); };
   // Times that grow share nothing a pair's partner has: the interval stays wide, so all 3 pairs are measured.
   const auto r = cli::time_paired(ca, cb, 1, {2, 3, 0.03});
   REQUIRE(r);
@@ -1864,16 +1869,52 @@ TEST_CASE("paired timing: B's median over A's, its interval from the pairs, warm
   CHECK(r->frames == 3);
   CHECK(r->spread > 0.03);
   // Steady frames: the interval is the ratio alone once the first pairs are in.
-  const cli::frame_clock steady_a = []() -> result<double> { return 10.0; }, steady_b = []() -> result<double> { return 15.0; };
+  const cli::frame_clock steady_a = [&]() -> result<frame_times> { return frame_of(10.0); },
+                         steady_b = [&]() -> result<frame_times> { return frame_of(15.0); };
   const auto steady = cli::time_paired(steady_a, steady_b, 0, {4, 50, 0.03});
   REQUIRE(steady);
   CHECK(steady->frames == 4);
   CHECK(steady->ratio == 1.5);
   CHECK(steady->spread == 0.0);
-  const cli::frame_clock broken = []() -> result<double> { return failure{"lost the device"}; };
+  const cli::frame_clock broken = []() -> result<frame_times> { return failure{"lost the device"}; };
   const auto failed = cli::time_paired(ca, broken, 0, {2, 2, 0.03});
   REQUIRE_FALSE(failed);
   CHECK(failed.error() == "lost the device");
+}
+
+TEST_CASE("paired timing of named timers: their sums compared, every timer's median kept", "[bench]") {
+  int calls = 0;
+  auto frame = [&](double capture) -> result<frame_times> {
+    frame_times t;
+    t.pass_ms = {{"gbuffer", 100.0 + double(calls++)}, {"capture", capture}, {"resolve", 1.0}};
+    t.frame_ms = 1000.0;
+    return t;
+  };
+  const cli::frame_clock a = [&] { return frame(3.0); }, b = [&] { return frame(7.0); };
+  const auto r = cli::time_paired(a, b, 0, {3, 3, 0.0}, {"capture", "resolve"}, {"capture", "resolve"});
+  REQUIRE(r);
+  CHECK(r->a_ms == 4.0);
+  CHECK(r->b_ms == 8.0);
+  CHECK(r->ratio == 2.0);  // the gbuffer's growing time and the frame's are left out
+  CHECK(r->a_pass_ms.at("capture") == 3.0);
+  CHECK(r->b_pass_ms.at("capture") == 7.0);
+  CHECK(r->a_pass_ms.at("gbuffer") == 103.0);  // A's gbuffer: 100, 103, 104 (A B, B A, A B)
+  CHECK(r->b_pass_ms.at("gbuffer") == 102.0);  // B's: 101, 102, 105
+  const auto misnamed = cli::time_paired(a, b, 0, {3, 3, 0.0}, {"capture"}, {"bake"});
+  REQUIRE_FALSE(misnamed);
+  CHECK(misnamed.error() == "the frame has no timer 'bake'");
+}
+
+TEST_CASE("a clock's time of a frame: the named timers summed, or the whole frame", "[bench]") {
+  frame_times t;
+  t.pass_ms = {{"capture", 3.0}, {"resolve", 1.5}, {"gbuffer", 0.25}};
+  t.frame_ms = 5.0;
+  CHECK(*cli::timed(t, {}) == 5.0);
+  CHECK(*cli::timed(t, {"capture", "resolve"}) == 4.5);
+  CHECK(*cli::timed(t, {"gbuffer"}) == 0.25);
+  const auto missing = cli::timed(t, {"capture", "bake"});
+  REQUIRE_FALSE(missing);
+  CHECK(missing.error() == "the frame has no timer 'bake'");
 }
 
 TEST_CASE("a frame clock renders a frame a call and gives its GPU time, on GL and Vulkan", "[bench][render]") {
@@ -1882,10 +1923,15 @@ TEST_CASE("a frame clock renders a frame a call and gives its GPU time, on GL an
   auto check_clock = [](const result<cli::frame_clock>& clock) {
     REQUIRE(clock);
     for (int i = 0; i < 2; ++i) {
-      const result<double> ms = (*clock)();
-      REQUIRE(ms);
-      CHECK(std::isfinite(*ms));
-      CHECK(*ms > 0.0);
+      const result<frame_times> t = (*clock)();
+      REQUIRE(t);
+      CHECK(std::isfinite(t->frame_ms));
+      CHECK(t->frame_ms > 0.0);
+      for (const char* timer : {"gbuffer", "light", "compose"}) {
+        INFO(timer);
+        REQUIRE(t->pass_ms.count(timer));
+        CHECK(t->pass_ms.at(timer) > 0.0);
+      }
     }
   };
   if (auto ctx = gl::headless_context::create()) {

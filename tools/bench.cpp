@@ -471,11 +471,70 @@ result<json> specular_records(const scene& room, const render::options& base, co
   return records;
 }
 
-// The targets' ratios on glass_room (scene "glass_room_paired"), each pair of configurations timed frame
-// against frame (paired.hpp) with its 95% interval, and the target it is held to (null where none applies).
+// One side of a paired comparison: its options, how its record names it, and the timers compared (the
+// whole frame where none are named).
+struct paired_side {
+  render::options o;
+  json settings;
+  std::vector<std::string> timers;
+};
+
+// A and B of `s` timed frame against frame (paired.hpp) on `clock`, as a result record (scene `name`): the
+// ratio with its 95% interval, the target it is held to (null where none applies), and for each side every
+// timer's median, bytes and copy limit (limit.hpp) with `alike`, the timers B runs as A does (where
+// `by_bytes`: those that move the same bytes on both sides; else none), from which the report bounds the
+// ratio.
+template <class Clock>
+result<json> paired_record(const std::string& comparison, const scene& s, const char* name, const paired_side& a,
+                           const paired_side& b, bool by_bytes, json target, bool quick, const std::string& backend,
+                           Clock&& clock, limit_meter& meter) {
+  auto ca = clock(s, a.o);
+  if (!ca) return failure{ca.error()};
+  auto cb = clock(s, b.o);
+  if (!cb) return failure{cb.error()};
+  auto r = cli::time_paired(*ca, *cb, 2, quick ? pair_count{5, 20, 0.03} : pair_count{15, 60, 0.03}, a.timers, b.timers);
+  if (!r) return failure{r.error()};
+  auto bytes_of = [&](const render::options& o) {
+    const render::frame_plan plan = render::plan_of(s, o);
+    return timer_bytes(render::schedule_of(s, plan, o), plan, o);
+  };
+  const auto a_bytes = bytes_of(a.o), b_bytes = bytes_of(b.o);
+  auto a_limit = meter.limits(a_bytes);
+  if (!a_limit) return failure{a_limit.error()};
+  auto b_limit = meter.limits(b_bytes);
+  if (!b_limit) return failure{b_limit.error()};
+  std::vector<std::string> alike;
+  for (const auto& [timer, n] : a_bytes)
+    if (by_bytes && b_bytes.count(timer) && b_bytes.at(timer) == n) alike.push_back(timer);
+  return json{{"technique", comparison},
+              {"scene", name},
+              {"backend", backend},
+              {"settings", {{"lights", s.lights.size()}, {"width", a.o.width}, {"height", a.o.height}, {"frames", r->frames}}},
+              {"a", a.settings},
+              {"b", b.settings},
+              {"timers", {{"a", a.timers}, {"b", b.timers}}},
+              {"a_ms", r->a_ms},
+              {"b_ms", r->b_ms},
+              {"ratio", r->ratio},
+              {"low", r->low},
+              {"high", r->high},
+              {"spread", r->spread},
+              {"a_pass_ms", r->a_pass_ms},
+              {"b_pass_ms", r->b_pass_ms},
+              {"a_pass_bytes", a_bytes},
+              {"b_pass_bytes", b_bytes},
+              {"a_limit_ms", *a_limit},
+              {"b_limit_ms", *b_limit},
+              {"alike", alike},
+              {"rmse", nullptr},
+              {"target", target}};
+}
+
+// The targets' ratios on glass_room (scene "glass_room_paired"), whole frames, the passes that move the same
+// bytes taken as alike.
 template <class Clock>
 result<json> paired_records(const scene& room, const render::options& base, const std::vector<int>& lights, bool quick,
-                            const std::string& backend, Clock&& clock) {
+                            const std::string& backend, Clock&& clock, limit_meter& meter) {
   using T = render::technique;
   using S = render::shadow_mode;
   auto with = [&](T t, S shadows, bool refraction) {
@@ -483,33 +542,17 @@ result<json> paired_records(const scene& room, const render::options& base, cons
     o.method = t;
     o.shadows = shadows;
     o.refraction = refraction ? 8.0f : 0.0f;
-    return o;
+    return paired_side{o,
+                       {{"technique", render::technique_name(t)}, {"shadows", render::shadow_name(shadows)}, {"refraction", refraction}},
+                       {}};
   };
   json records = json::array();
-  auto measure = [&](const std::string& comparison, int n, const render::options& a, const render::options& b,
-                     const char* bound, double target, bool applies) -> result<bool> {
-    const scene s = with_lights(room, n);
-    auto ca = clock(s, a);
-    if (!ca) return failure{ca.error()};
-    auto cb = clock(s, b);
-    if (!cb) return failure{cb.error()};
-    auto r = cli::time_paired(*ca, *cb, 2, quick ? pair_count{5, 20, 0.03} : pair_count{15, 60, 0.03});
+  auto measure = [&](const std::string& comparison, int n, const paired_side& a, const paired_side& b, const char* bound,
+                     double target, bool applies) -> result<bool> {
+    auto r = paired_record(comparison, with_lights(room, n), "glass_room_paired", a, b, true,
+                           applies ? json{{bound, target}} : json(nullptr), quick, backend, clock, meter);
     if (!r) return failure{r.error()};
-    records.push_back({{"technique", comparison},
-                       {"scene", "glass_room_paired"},
-                       {"backend", backend},
-                       {"settings", {{"lights", n}, {"width", base.width}, {"height", base.height}, {"frames", r->frames}}},
-                       {"a", {{"technique", render::technique_name(a.method)}, {"shadows", render::shadow_name(a.shadows)},
-                              {"refraction", a.refraction > 0.0f}}},
-                       {"b", {{"technique", render::technique_name(b.method)}, {"shadows", render::shadow_name(b.shadows)},
-                              {"refraction", b.refraction > 0.0f}}},
-                       {"a_ms", r->a_ms},
-                       {"b_ms", r->b_ms},
-                       {"ratio", r->ratio},
-                       {"low", r->low},
-                       {"high", r->high},
-                       {"spread", r->spread},
-                       {"target", applies ? json{{bound, target}} : json(nullptr)}});
+    records.push_back(*r);
     return true;
   };
   for (int n : lights) {
@@ -536,6 +579,60 @@ result<json> paired_records(const scene& room, const render::options& base, cons
                           "at_most", n == 2 ? 1.05 : 1.15, n == 2 || n == 64);
         !ok)
       return failure{ok.error()};
+  return records;
+}
+
+// S1's and S2's targets, timed in pairs on the timers the sources compare (scenes "hair_paired" and
+// "smoke_paired"): the k-buffer's capture and resolve at k = 8 against shading every fragment at capture,
+// and a light volume's bake and particle pass against lighting every particle fragment, at the setting of
+// `volumes` (this backend's volume records) that is fastest at RMSE at most 5, or the most accurate where
+// none is; each with its RMSE from `layers` and `volumes`. No pass of A is alike in B: each side's shaders
+// differ.
+template <class Clock>
+result<json> technique_pairs(const scene& hair, const scene& smoke, const json& layers, const json& volumes,
+                             const render::options& base, bool quick, const std::string& backend, Clock&& clock,
+                             limit_meter& meter) {
+  using L = render::options::layers;
+  using P = render::options::particle_light;
+  json records = json::array();
+  render::options every = base, kbuffer = base;
+  every.kbuffer_variant = L::forward;
+  kbuffer.kbuffer_variant = L::deferred;
+  kbuffer.kbuffer_k = 8;
+  const auto k8 = std::find_if(layers.begin(), layers.end(), [](const json& r) {
+    return r["technique"] == "layers-deferred" && r["settings"]["k"] == 8 && r["settings"]["zoom"] == 1.0;
+  });
+  if (k8 == layers.end()) return failure{"no k-buffer run at k = 8"};
+  const std::vector<std::string> capture{"capture", "resolve"};
+  auto hair_pair = paired_record("forward / k-buffer, capture and resolve", zoomed(hair, 1.0f), "hair_paired",
+                                 {kbuffer, {{"technique", "layers-deferred"}, {"k", 8}}, capture},
+                                 {every, {{"technique", "layers-forward"}}, capture}, false,
+                                 {{"at_least", 2.0}, {"rmse_at_most", 9.0}}, quick, backend, clock, meter);
+  if (!hair_pair) return failure{hair_pair.error()};
+  (*hair_pair)["rmse"] = (*k8)["rmse_transparent"];
+  records.push_back(*hair_pair);
+  auto better = [](const json& r, const json* than) {  // fits before not, then faster (fits) or more accurate
+    if (!than) return true;
+    const bool fits = r["rmse"].template get<double>() <= 5.0, was = (*than)["rmse"].template get<double>() <= 5.0;
+    if (fits != was) return fits;
+    return fits ? r["lighting_ms"] < (*than)["lighting_ms"] : r["rmse"] < (*than)["rmse"];
+  };
+  const json* chosen = nullptr;
+  for (const json& r : volumes)
+    if (r["technique"] != "volumes-forward" && better(r, chosen)) chosen = &r;
+  if (!chosen) return failure{"no light volume runs"};
+  render::options lit = base, volume = base;
+  lit.particles = P::forward;
+  for (P p : {P::six_axes, P::four_axes, P::fourteen_axes})
+    if ((*chosen)["technique"] == std::string("volumes-") + render::particle_light_name(p)) volume.particles = p;
+  volume.volume_cells = (*chosen)["settings"]["cells"].template get<int>();
+  auto smoke_pair = paired_record("per-fragment / light volumes, bake and particles", smoke, "smoke_paired",
+                                  {volume, {{"technique", (*chosen)["technique"]}, {"cells", volume.volume_cells}}, {"bake", "particles"}},
+                                  {lit, {{"technique", "volumes-forward"}}, {"particles"}}, false,
+                                  {{"at_least", 7.0}, {"rmse_at_most", 5.0}}, quick, backend, clock, meter);
+  if (!smoke_pair) return failure{smoke_pair.error()};
+  (*smoke_pair)["rmse"] = (*chosen)["rmse"];
+  records.push_back(*smoke_pair);
   return records;
 }
 
@@ -742,7 +839,7 @@ int bench(std::vector<std::string> args) {
 #endif
       return failure{"no backend"};
     };
-    auto paired = paired_records(scenes.at("glass_room"), base, lights, quick, backend, clock);
+    auto paired = paired_records(scenes.at("glass_room"), base, lights, quick, backend, clock, meter);
     if (!paired) {
       std::fprintf(stderr, "dstrans bench: paired runs on %s: %s\n", backend.c_str(), paired.error().c_str());
       return 1;
@@ -786,6 +883,14 @@ int bench(std::vector<std::string> args) {
         return 1;
       }
       for (const json& r : *volumes) results.push_back(r);
+      if (b == backend) {
+        auto pairs = technique_pairs(*hair, *smoke, *layers, *volumes, base, quick, b, clock, meter);
+        if (!pairs) {
+          std::fprintf(stderr, "dstrans bench: hair and smoke in pairs on %s: %s\n", b.c_str(), pairs.error().c_str());
+          return 1;
+        }
+        for (const json& r : *pairs) results.push_back(r);
+      }
       render::options post_base = base;
       post_base.refraction = 8.0f;
       auto post = post_records(with_lights(scenes.at("glass_room"), fixed), post_base, b, draw);

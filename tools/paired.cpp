@@ -14,6 +14,17 @@ double median(std::vector<double> v) {
 }
 }  // namespace
 
+result<double> timed(const frame_times& t, const std::vector<std::string>& timers) {
+  if (timers.empty()) return t.frame_ms;
+  double sum = 0.0;
+  for (const std::string& name : timers) {
+    const auto found = t.pass_ms.find(name);
+    if (found == t.pass_ms.end()) return failure{"the frame has no timer '" + name + "'"};
+    sum += found->second;
+  }
+  return sum;
+}
+
 paired_ratio ratio_of(const std::vector<double>& a, const std::vector<double>& b) {
   paired_ratio r;
   const std::size_t n = std::min(a.size(), b.size());
@@ -42,20 +53,33 @@ paired_ratio ratio_of(const std::vector<double>& a, const std::vector<double>& b
   return r;
 }
 
-result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, const pair_count& count) {
+result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, const pair_count& count,
+                                 const std::vector<std::string>& a_timers, const std::vector<std::string>& b_timers) {
   std::vector<double> ta, tb;
+  std::map<std::string, std::vector<double>> pa, pb;
+  auto keep = [](const frame_times& t, const std::vector<std::string>& timers, std::vector<double>& total,
+                 std::map<std::string, std::vector<double>>& passes) -> result<bool> {
+    auto ms = timed(t, timers);
+    if (!ms) return failure{ms.error()};
+    total.push_back(*ms);
+    for (const auto& [timer, pass_ms] : t.pass_ms) passes[timer].push_back(pass_ms);
+    return true;
+  };
   for (int i = 0; i < warmup + count.max_frames; ++i) {
     const bool a_first = i % 2 == 0;  // A B, then B A
-    result<double> first = a_first ? a() : b();
+    result<frame_times> first = a_first ? a() : b();
     if (!first) return failure{first.error()};
-    result<double> second = a_first ? b() : a();
+    result<frame_times> second = a_first ? b() : a();
     if (!second) return failure{second.error()};
     if (i < warmup) continue;
-    ta.push_back(a_first ? *first : *second);
-    tb.push_back(a_first ? *second : *first);
+    if (auto ok = keep(a_first ? *first : *second, a_timers, ta, pa); !ok) return failure{ok.error()};
+    if (auto ok = keep(a_first ? *second : *first, b_timers, tb, pb); !ok) return failure{ok.error()};
     if (int(ta.size()) >= count.min_frames && ratio_of(ta, tb).spread <= count.spread) break;
   }
-  return ratio_of(ta, tb);
+  paired_ratio r = ratio_of(ta, tb);
+  for (const auto& [timer, v] : pa) r.a_pass_ms[timer] = median(v);
+  for (const auto& [timer, v] : pb) r.b_pass_ms[timer] = median(v);
+  return r;
 }
 
 }  // namespace dstrans::cli

@@ -101,9 +101,9 @@ result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_s
     camera view;
   };
   auto on = std::shared_ptr<running>(new running{std::move(*r), gl::scene_geometry(s), s.view});
-  return cli::frame_clock([on]() -> result<double> {
+  return cli::frame_clock([on]() -> result<frame_times> {
     on->frames->render(on->view, [&](const scheduled_pass& pass) { on->meshes(pass); });
-    return on->frames->times().frame_ms;
+    return on->frames->times();
   });
 }
 

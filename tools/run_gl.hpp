@@ -15,7 +15,7 @@ namespace dstrans::render {
 
 // The last of o.frames frames of `s` (times: their medians), with the pass shaders `shaders`.
 result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shaders);
-// One frame of `s` a call, each the GPU time of the whole frame, through a renderer the clock keeps (paired.hpp).
+// One frame of `s` a call, each with its GPU times, through a renderer the clock keeps (paired.hpp).
 result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_shaders& shaders);
 // Full-screen copies between two RGBA32F textures in the current context (limit.hpp): a size past their 32 MiB
 // takes as many copies, timed by the host between two glFinish.

@@ -116,11 +116,11 @@ result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options
     camera view;
   };
   auto on = std::make_shared<running>(running{std::move(*r), std::move(*meshes), s.view});
-  return cli::frame_clock([on, &dev]() -> result<double> {
+  return cli::frame_clock([on, &dev]() -> result<frame_times> {
     dev.submit([&](VkCommandBuffer cmd) {
       on->frames->record(cmd, on->view, [&](VkCommandBuffer c, const scheduled_pass& pass) { (*on->meshes)(c, pass); });
     });
-    return on->frames->times().frame_ms;
+    return on->frames->times();
   });
 }
 

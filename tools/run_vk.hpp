@@ -17,8 +17,8 @@ namespace dstrans::render {
 
 // The last of o.frames frames of `s` on `dev` (times: their medians), with the pass shaders `shaders`.
 result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);
-// One frame of `s` a call on `dev`, each the GPU time of the whole frame, through a renderer the clock keeps
-// (paired.hpp); `dev` outlives the clock.
+// One frame of `s` a call on `dev`, each with its GPU times, through a renderer the clock keeps (paired.hpp);
+// `dev` outlives the clock.
 result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);
 // Full-screen copies between two RGBA32F images on `dev` (limit.hpp), which outlives the clock: a size past
 // their 32 MiB takes as many copies, all in one submission timed by its timestamps.
