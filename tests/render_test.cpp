@@ -907,6 +907,27 @@ TEST_CASE("a pipeline without an effect carries none of its code", "[pipeline][g
   }
 }
 
+TEST_CASE("the k-buffer's capture is one program for every list variant: only the resolve tells them apart",
+          "[pipeline][kbuffer]") {
+  const scene s = example("hair.json");
+  using L = options::layers;
+  auto program = [&](L variant, const char* pass) {
+    options o = small(160, 90);
+    o.kbuffer_variant = variant;
+    auto p = render::pipeline_passes(pass_shaders(), s, render::plan_of(s, o), o);
+    REQUIRE(p);
+    const auto found = std::find_if(p->begin(), p->end(), [&](const render::named_pass& np) { return np.name == pass; });
+    REQUIRE(found != p->end());
+    return found->sources.vertex.str() + found->sources.fragment.str();
+  };
+  for (L variant : {L::deferred, L::tailless, L::cheap}) {
+    INFO(render::layers_name(variant));
+    CHECK(program(variant, "capture pass") == program(L::forward, "capture pass"));
+    CHECK(program(variant, "resolve pass") != program(L::forward, "resolve pass"));
+  }
+  CHECK(program(L::wboit, "capture pass") != program(L::forward, "capture pass"));
+}
+
 // Issue 9: a little hair (few enough strands that no pixel holds more than 32 fragments), lit by the sun
 // alone so that every term of the resolve can be recomputed here; a second head of hair on exactly the
 // same strands, coloured differently, makes fragments of equal depth.
@@ -1900,6 +1921,8 @@ TEST_CASE("paired timing of named timers: their sums compared, every timer's med
   CHECK(r->b_pass_ms.at("capture") == 7.0);
   CHECK(r->a_pass_ms.at("gbuffer") == 103.0);  // A's gbuffer: 100, 103, 104 (A B, B A, A B)
   CHECK(r->b_pass_ms.at("gbuffer") == 102.0);  // B's: 101, 102, 105
+  CHECK(r->a_frame_ms == 1000.0);
+  CHECK(r->b_frame_ms == 1000.0);
   const auto misnamed = cli::time_paired(a, b, 0, {3, 3, 0.0}, {"capture"}, {"bake"});
   REQUIRE_FALSE(misnamed);
   CHECK(misnamed.error() == "the frame has no timer 'bake'");

@@ -481,13 +481,12 @@ struct paired_side {
 
 // A and B of `s` timed frame against frame (paired.hpp) on `clock`, as a result record (scene `name`): the
 // ratio with its 95% interval, the target it is held to (null where none applies), and for each side every
-// timer's median, bytes and copy limit (limit.hpp) with `alike`, the timers B runs as A does (where
-// `by_bytes`: those that move the same bytes on both sides; else none), from which the report bounds the
-// ratio.
+// timer's median, bytes and copy limit (limit.hpp) with the timers B runs as A does (`alike`; where none
+// are given, those that move the same bytes on both sides), from which the report bounds the ratio.
 template <class Clock>
 result<json> paired_record(const std::string& comparison, const scene& s, const char* name, const paired_side& a,
-                           const paired_side& b, bool by_bytes, json target, bool quick, const std::string& backend,
-                           Clock&& clock, limit_meter& meter) {
+                           const paired_side& b, std::optional<std::vector<std::string>> alike, json target, bool quick,
+                           const std::string& backend, Clock&& clock, limit_meter& meter) {
   auto ca = clock(s, a.o);
   if (!ca) return failure{ca.error()};
   auto cb = clock(s, b.o);
@@ -503,9 +502,11 @@ result<json> paired_record(const std::string& comparison, const scene& s, const 
   if (!a_limit) return failure{a_limit.error()};
   auto b_limit = meter.limits(b_bytes);
   if (!b_limit) return failure{b_limit.error()};
-  std::vector<std::string> alike;
-  for (const auto& [timer, n] : a_bytes)
-    if (by_bytes && b_bytes.count(timer) && b_bytes.at(timer) == n) alike.push_back(timer);
+  if (!alike) {
+    alike.emplace();
+    for (const auto& [timer, n] : a_bytes)
+      if (b_bytes.count(timer) && b_bytes.at(timer) == n) alike->push_back(timer);
+  }
   return json{{"technique", comparison},
               {"scene", name},
               {"backend", backend},
@@ -521,11 +522,13 @@ result<json> paired_record(const std::string& comparison, const scene& s, const 
               {"spread", r->spread},
               {"a_pass_ms", r->a_pass_ms},
               {"b_pass_ms", r->b_pass_ms},
+              {"a_frame_ms", r->a_frame_ms},
+              {"b_frame_ms", r->b_frame_ms},
               {"a_pass_bytes", a_bytes},
               {"b_pass_bytes", b_bytes},
               {"a_limit_ms", *a_limit},
               {"b_limit_ms", *b_limit},
-              {"alike", alike},
+              {"alike", *alike},
               {"rmse", nullptr},
               {"target", target}};
 }
@@ -549,7 +552,7 @@ result<json> paired_records(const scene& room, const render::options& base, cons
   json records = json::array();
   auto measure = [&](const std::string& comparison, int n, const paired_side& a, const paired_side& b, const char* bound,
                      double target, bool applies) -> result<bool> {
-    auto r = paired_record(comparison, with_lights(room, n), "glass_room_paired", a, b, true,
+    auto r = paired_record(comparison, with_lights(room, n), "glass_room_paired", a, b, std::nullopt,
                            applies ? json{{bound, target}} : json(nullptr), quick, backend, clock, meter);
     if (!r) return failure{r.error()};
     records.push_back(*r);
@@ -586,8 +589,9 @@ result<json> paired_records(const scene& room, const render::options& base, cons
 // "smoke_paired"): the k-buffer's capture and resolve at k = 8 against shading every fragment at capture,
 // and a light volume's bake and particle pass against lighting every particle fragment, at the setting of
 // `volumes` (this backend's volume records) that is fastest at RMSE at most 5, or the most accurate where
-// none is; each with its RMSE from `layers` and `volumes`. No pass of A is alike in B: each side's shaders
-// differ.
+// none is; each with its RMSE from `layers` and `volumes`. Alike: the k-buffer's capture, one program for
+// every list variant (only the resolve tells them apart); no pass of the light volumes, whose particle
+// shaders differ.
 template <class Clock>
 result<json> technique_pairs(const scene& hair, const scene& smoke, const json& layers, const json& volumes,
                              const render::options& base, bool quick, const std::string& backend, Clock&& clock,
@@ -606,7 +610,7 @@ result<json> technique_pairs(const scene& hair, const scene& smoke, const json& 
   const std::vector<std::string> capture{"capture", "resolve"};
   auto hair_pair = paired_record("forward / k-buffer, capture and resolve", zoomed(hair, 1.0f), "hair_paired",
                                  {kbuffer, {{"technique", "layers-deferred"}, {"k", 8}}, capture},
-                                 {every, {{"technique", "layers-forward"}}, capture}, false,
+                                 {every, {{"technique", "layers-forward"}}, capture}, std::vector<std::string>{"capture"},
                                  {{"at_least", 2.0}, {"rmse_at_most", 9.0}}, quick, backend, clock, meter);
   if (!hair_pair) return failure{hair_pair.error()};
   (*hair_pair)["rmse"] = (*k8)["rmse_transparent"];
@@ -628,7 +632,7 @@ result<json> technique_pairs(const scene& hair, const scene& smoke, const json& 
   volume.volume_cells = (*chosen)["settings"]["cells"].template get<int>();
   auto smoke_pair = paired_record("per-fragment / light volumes, bake and particles", smoke, "smoke_paired",
                                   {volume, {{"technique", (*chosen)["technique"]}, {"cells", volume.volume_cells}}, {"bake", "particles"}},
-                                  {lit, {{"technique", "volumes-forward"}}, {"particles"}}, false,
+                                  {lit, {{"technique", "volumes-forward"}}, {"particles"}}, std::vector<std::string>{},
                                   {{"at_least", 7.0}, {"rmse_at_most", 5.0}}, quick, backend, clock, meter);
   if (!smoke_pair) return failure{smoke_pair.error()};
   (*smoke_pair)["rmse"] = (*chosen)["rmse"];

@@ -55,13 +55,14 @@ paired_ratio ratio_of(const std::vector<double>& a, const std::vector<double>& b
 
 result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, const pair_count& count,
                                  const std::vector<std::string>& a_timers, const std::vector<std::string>& b_timers) {
-  std::vector<double> ta, tb;
+  std::vector<double> ta, tb, fa, fb;
   std::map<std::string, std::vector<double>> pa, pb;
   auto keep = [](const frame_times& t, const std::vector<std::string>& timers, std::vector<double>& total,
-                 std::map<std::string, std::vector<double>>& passes) -> result<bool> {
+                 std::vector<double>& frames, std::map<std::string, std::vector<double>>& passes) -> result<bool> {
     auto ms = timed(t, timers);
     if (!ms) return failure{ms.error()};
     total.push_back(*ms);
+    frames.push_back(t.frame_ms);
     for (const auto& [timer, pass_ms] : t.pass_ms) passes[timer].push_back(pass_ms);
     return true;
   };
@@ -72,13 +73,17 @@ result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int
     result<frame_times> second = a_first ? b() : a();
     if (!second) return failure{second.error()};
     if (i < warmup) continue;
-    if (auto ok = keep(a_first ? *first : *second, a_timers, ta, pa); !ok) return failure{ok.error()};
-    if (auto ok = keep(a_first ? *second : *first, b_timers, tb, pb); !ok) return failure{ok.error()};
+    if (auto ok = keep(a_first ? *first : *second, a_timers, ta, fa, pa); !ok) return failure{ok.error()};
+    if (auto ok = keep(a_first ? *second : *first, b_timers, tb, fb, pb); !ok) return failure{ok.error()};
     if (int(ta.size()) >= count.min_frames && ratio_of(ta, tb).spread <= count.spread) break;
   }
   paired_ratio r = ratio_of(ta, tb);
   for (const auto& [timer, v] : pa) r.a_pass_ms[timer] = median(v);
   for (const auto& [timer, v] : pb) r.b_pass_ms[timer] = median(v);
+  if (!fa.empty()) {
+    r.a_frame_ms = median(fa);
+    r.b_frame_ms = median(fb);
+  }
   return r;
 }
 

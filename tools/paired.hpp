@@ -31,6 +31,7 @@ struct paired_ratio {
   double a_ms = 0.0, b_ms = 0.0; // the medians
   double spread = 0.0;           // the interval's width over the ratio
   std::map<std::string, double> a_pass_ms, b_pass_ms;  // each timer's median over the same frames
+  double a_frame_ms = 0.0, b_frame_ms = 0.0;            // and the whole frame's
 };
 
 // How many pairs to measure: at least `min_frames`, then more until the interval's width is at most
