@@ -38,6 +38,31 @@ enum class backend { gl, vk };
 const backend backends[] = {backend::gl, backend::vk};
 const char* name(backend b) { return b == backend::gl ? "GL" : "VK"; }
 
+// `on_gl` in a GL context and `on_vk` on a Vulkan device, each skipped (with a message) where this machine
+// lacks the backend, and each followed by a check that the driver reported nothing.
+void on_each_backend(const std::function<void()>& on_gl, const std::function<void(vk::device&)>& on_vk) {
+  if (auto ctx = gl::headless_context::create()) {
+    on_gl();
+    const auto messages = (*ctx)->debug_messages();
+    for (const auto& m : messages) UNSCOPED_INFO(m);
+    CHECK(messages.empty());
+  } else {
+    WARN("skipped GL: " << ctx.error());
+  }
+  if (auto hd = vk::headless_device::create(true)) {
+    {
+      auto dev = vk::device::create((*hd)->ctx());
+      REQUIRE(dev);
+      on_vk(**dev);
+    }
+    const auto messages = (*hd)->validation_messages();
+    for (const auto& m : messages) UNSCOPED_INFO(m);
+    CHECK(messages.empty());
+  } else {
+    WARN("skipped VK: " << hd.error());
+  }
+}
+
 // One frame on `b`, or nothing (with a message) where this machine lacks the backend.
 std::optional<frame> draw(backend b, const scene& s, const options& o) {
   if (b == backend::gl) {
@@ -1957,22 +1982,8 @@ TEST_CASE("a frame clock renders a frame a call and gives its GPU time, on GL an
       }
     }
   };
-  if (auto ctx = gl::headless_context::create()) {
-    check_clock(render::gl_clock(s, o, pass_shaders()));
-    CHECK((*ctx)->debug_messages().empty());
-  } else {
-    WARN("skipped GL: " << ctx.error());
-  }
-  if (auto hd = vk::headless_device::create(true)) {
-    {
-      auto dev = vk::device::create((*hd)->ctx());
-      REQUIRE(dev);
-      check_clock(render::vk_clock(**dev, s, o, pass_shaders()));
-    }
-    CHECK((*hd)->validation_messages().empty());
-  } else {
-    WARN("skipped VK: " << hd.error());
-  }
+  on_each_backend([&] { check_clock(render::gl_clock(s, o, pass_shaders())); },
+                  [&](vk::device& dev) { check_clock(render::vk_clock(dev, s, o, pass_shaders())); });
 }
 
 TEST_CASE("a pass's limit: the bytes its resources hold, half read and half written, as a copy's time", "[bench]") {
@@ -2011,6 +2022,20 @@ TEST_CASE("a pass's limit: the bytes its resources hold, half read and half writ
   options hair = small(64, 36);
   const render::frame_plan layers = render::plan_of(example("hair.json"), hair);
   CHECK(cli::resource_bytes("kbuffer", layers, hair) == (4u + 8u + 2u + 16u * std::size_t(hair.kbuffer_k)) * pixels);
+  // The particles' reference: each shadowed light's map copied into its layer, and all layers read.
+  options reference = small(64, 36);
+  reference.shadows = render::shadow_mode::transparent;
+  reference.particles = options::particle_light::forward;
+  const scene smoke = example("smoke.json");
+  const render::frame_plan particles = render::plan_of(smoke, reference);
+  const std::size_t spots = particles.lookups.size() -
+                            std::size_t(std::count(particles.lookups.begin(), particles.lookups.end(), render::shadow_mode::off));
+  REQUIRE(spots == 3);
+  const std::size_t map = 8u * std::size_t(reference.shadow_size) * std::size_t(reference.shadow_size);
+  CHECK(cli::resource_bytes("shadow layers", particles, reference) == spots * map);
+  const std::size_t frame_bytes = cli::resource_bytes("frame", particles, reference), gbuffer_bytes = cli::resource_bytes("gbuffer", particles, reference);
+  CHECK(cli::timer_bytes(render::schedule_of(smoke, particles, reference), particles, reference).at("particles") ==
+        spots * (map + map) / 2 + (gbuffer_bytes + spots * map + 2u * frame_bytes) / 2);
 
   int calls = 0;
   cli::limit_meter meter([&](std::size_t b) -> result<double> {
@@ -2040,22 +2065,5 @@ TEST_CASE("a copy clock copies any size, past its images' 32 MiB in several copi
       CHECK(*ms > 0.0);
     }
   };
-  if (auto ctx = gl::headless_context::create()) {
-    check_clock(render::gl_copy_clock());
-    CHECK((*ctx)->debug_messages().empty());
-  } else {
-    WARN("skipped GL: " << ctx.error());
-  }
-  if (auto hd = vk::headless_device::create(true)) {
-    {
-      auto dev = vk::device::create((*hd)->ctx());
-      REQUIRE(dev);
-      check_clock(render::vk_copy_clock(**dev));
-    }
-    const auto messages = (*hd)->validation_messages();
-    for (const std::string& m : messages) UNSCOPED_INFO(m);
-    CHECK(messages.empty());
-  } else {
-    WARN("skipped VK: " << hd.error());
-  }
+  on_each_backend([&] { check_clock(render::gl_copy_clock()); }, [&](vk::device& dev) { check_clock(render::vk_copy_clock(dev)); });
 }

@@ -32,7 +32,11 @@ std::size_t resource_bytes(const std::string& resource, const render::frame_plan
   if (resource == "gbuffer" || resource == "gbuffer 2") return planned_bytes(plan, "gbuffer.", pixels);
   if (resource == "light buffer" || resource == "light buffer 2") return planned_bytes(plan, "light.", pixels);
   if (resource == "shadow map") return planned_bytes(plan, "shadow.", shadow_texels);
-  if (resource == "shadow layers") return planned_bytes(plan, "shadow.depth", shadow_texels);
+  if (resource == "shadow layers") {  // a layer of the shadow map's targets for each shadowed light
+    const auto layers = std::size_t(std::count_if(plan.lookups.begin(), plan.lookups.end(),
+                                                  [](render::shadow_mode m) { return m != render::shadow_mode::off; }));
+    return layers * planned_bytes(plan, "shadow.", shadow_texels);
+  }
   if (resource == "kbuffer")
     return planned_bytes(plan, "kbuffer.", pixels) + std::size_t(o.kbuffer_k) * std::size_t(kbuffer_node_bytes) * pixels;
   if (resource == "lit") return bytes_of(render::forward_targets(plan.forward_depth, o.float_targets), pixels);
@@ -43,9 +47,13 @@ std::size_t resource_bytes(const std::string& resource, const render::frame_plan
 std::map<std::string, std::size_t> timer_bytes(const frame_schedule& s, const render::frame_plan& plan, const render::options& o) {
   std::map<std::string, std::size_t> out;
   for (const scheduled_pass& pass : s.passes) {
+    // A light's pass touches only its own layer of the shadow layers.
+    auto bytes = [&](const std::string& r) {
+      return r == "shadow layers" && pass.light >= 0 ? resource_bytes("shadow map", plan, o) : resource_bytes(r, plan, o);
+    };
     std::size_t touched = 0;
-    for (const std::string& r : pass.reads) touched += resource_bytes(r, plan, o);
-    for (const std::string& w : pass.writes) touched += resource_bytes(w, plan, o);
+    for (const std::string& r : pass.reads) touched += bytes(r);
+    for (const std::string& w : pass.writes) touched += bytes(w);
     out[pass.timer] += touched / 2;
   }
   return out;
