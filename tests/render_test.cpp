@@ -1953,6 +1953,30 @@ TEST_CASE("paired timing of named timers: their sums compared, every timer's med
   CHECK(misnamed.error() == "the frame has no timer 'bake'");
 }
 
+TEST_CASE("a difference clock gives what one configuration adds to a frame over another, frame and timers", "[bench]") {
+  auto steady = [](double frame, std::map<std::string, double> passes) {
+    return cli::frame_clock([=]() -> result<frame_times> {
+      frame_times t;
+      t.frame_ms = frame;
+      t.pass_ms = passes;
+      return t;
+    });
+  };
+  const cli::frame_clock added =
+      cli::difference(steady(10.0, {{"gbuffer", 3.0}, {"bake", 2.0}, {"particles", 5.0}}), steady(4.0, {{"gbuffer", 1.5}, {"light", 2.5}}));
+  const result<frame_times> t = added();
+  REQUIRE(t);
+  CHECK(t->frame_ms == 6.0);
+  CHECK(t->pass_ms.at("gbuffer") == 1.5);  // work run under the G-buffer's timestamps still counts
+  CHECK(t->pass_ms.at("bake") == 2.0);
+  CHECK(t->pass_ms.at("particles") == 5.0);
+  CHECK(t->pass_ms.count("light") == 0);
+  const cli::frame_clock broken = []() -> result<frame_times> { return failure{"lost the device"}; };
+  const auto failed = cli::difference(steady(1.0, {}), broken)();
+  REQUIRE_FALSE(failed);
+  CHECK(failed.error() == "lost the device");
+}
+
 TEST_CASE("a clock's time of a frame: the named timers summed, or the whole frame", "[bench]") {
   frame_times t;
   t.pass_ms = {{"capture", 3.0}, {"resolve", 1.5}, {"gbuffer", 0.25}};

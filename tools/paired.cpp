@@ -53,6 +53,20 @@ paired_ratio ratio_of(const std::vector<double>& a, const std::vector<double>& b
   return r;
 }
 
+frame_clock difference(frame_clock with, frame_clock without) {
+  return [with = std::move(with), without = std::move(without)]() -> result<frame_times> {
+    result<frame_times> a = with();
+    if (!a) return a;
+    result<frame_times> b = without();
+    if (!b) return b;
+    frame_times d = *a;
+    d.frame_ms -= b->frame_ms;
+    for (auto& [timer, ms] : d.pass_ms)
+      if (const auto found = b->pass_ms.find(timer); found != b->pass_ms.end()) ms -= found->second;
+    return d;
+  };
+}
+
 result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, const pair_count& count,
                                  const std::vector<std::string>& a_timers, const std::vector<std::string>& b_timers) {
   std::vector<double> ta, tb, fa, fb;

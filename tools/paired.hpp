@@ -44,6 +44,11 @@ struct pair_count {
 // The ratio of B's median to A's over pairs (a[i], b[i]), with its interval; frames 0 where there are no pairs.
 paired_ratio ratio_of(const std::vector<double>& a, const std::vector<double>& b);
 
+// What `with` costs beyond `without`, as a clock: each call renders a frame of each, and gives the frame's
+// difference and each timer's (a timer `without` lacks counts whole, one only it has is left out), so that
+// work a driver runs under another pass's timestamps still counts.
+frame_clock difference(frame_clock with, frame_clock without);
+
 // Pairs of A and B as `count` asks, after `warmup` pairs that are not counted, each side's time that of
 // its `timers` (timed: the whole frame where none are named).
 result<paired_ratio> time_paired(const frame_clock& a, const frame_clock& b, int warmup, const pair_count& count,
