@@ -38,6 +38,34 @@ TEST_CASE("a light along an axis of the six- or four-axis set is Lambert exactly
     }
 }
 
+TEST_CASE("opposite pairs: each axis with its opposite, and a normal faces at most one of a pair", "[light_basis]") {
+  using P = std::vector<std::pair<int, int>>;
+  CHECK(opposite_pairs(six_axes()) == P{{0, 1}, {2, 3}, {4, 5}});
+  CHECK(opposite_pairs(four_axes()).empty());  // a tetrahedron's axes have no opposites
+  basis fourteen = six_axes();
+  for (int i = 0; i < 8; ++i) fourteen.axes.push_back(glm::normalize(glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1)));
+  const P pairs = opposite_pairs(fourteen);
+  CHECK(pairs == P{{0, 1}, {2, 3}, {4, 5}, {6, 13}, {7, 12}, {8, 11}, {9, 10}});
+  // One fetch a pair reads what the sum over every axis reads.
+  std::mt19937 rng(3);
+  std::vector<glm::vec3> values;
+  for (std::size_t a = 0; a < fourteen.axes.size(); ++a) values.push_back(random_unit(rng) + glm::vec3(1.0f));
+  for (int i = 0; i < 1000; ++i) {
+    const glm::vec3 n = random_unit(rng);
+    glm::vec3 by_pairs(0.0f);
+    for (const auto& [a, b] : pairs) {
+      const float d = glm::dot(n, fourteen.axes[std::size_t(a)]);
+      by_pairs += std::abs(d) * values[std::size_t(d >= 0.0f ? a : b)];
+    }
+    const glm::vec3 all = fourteen.evaluate(n, values);
+    for (int c = 0; c < 3; ++c) CHECK(by_pairs[c] == Approx(all[c]).margin(1e-5));
+  }
+  basis odd = six_axes();
+  odd.axes.pop_back();  // -Z gone: +Z has no opposite
+  CHECK(opposite_pairs(odd).empty());
+  CHECK(opposite_pairs(basis{}).empty());
+}
+
 TEST_CASE("for every light direction the average over normals is Lambert's 1/4, for any set of axes", "[light_basis]") {
   std::mt19937 rng(11);
   basis user;  // a set of seven axes of no particular symmetry that spans every direction

@@ -217,22 +217,32 @@ inline void add_light_volume_bake(source& src, const basis& b, int first_binding
 // pack_volumes with b's axes):
 //   vec3 dst_volume_light(sampler3D atlas, float slab, vec3 p, vec3 n, vec3 origin, vec3 scale, vec3 offset, vec3 dims)
 // the light at world point p for unit normal n from the region (origin, scale, first texel, dims):
-// sum over axes of max(0, n . axis) times the trilinearly filtered value of that axis. For S2's six axes
-// only three face any normal, one per coordinate, picked by its sign: three fetches and no branches.
+// sum over axes of max(0, n . axis) times the trilinearly filtered value of that axis. Where the axes come
+// in opposite pairs (opposite_pairs: S2's six, the fourteen of faces and corners), at most one of a pair
+// faces the normal, picked by the sign of n . axis: one fetch a pair and no branches.
 inline void add_light_volume_read(source& src, const basis& b) {
   src.add_shared(text::dst_light_basis);
   src.add_shared(text::dst_volume_texcoord);
-  const bool six = b.axes == six_axes().axes;
-  src.add(detail::basis_constants(b) +
+  const auto pairs = opposite_pairs(b);
+  std::string pair_constants;
+  if (!pairs.empty()) {
+    pair_constants = "const int dst_pairs = " + std::to_string(pairs.size()) + ";\nconst ivec2 dst_pair[" +
+                     std::to_string(pairs.size()) + "] = ivec2[](";
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      pair_constants += (k ? ", " : "") + ("ivec2(" + std::to_string(pairs[k].first) + ", " + std::to_string(pairs[k].second) + ")");
+    pair_constants += ");\n";
+  }
+  src.add(detail::basis_constants(b) + pair_constants +
               "vec3 dst_volume_light(sampler3D atlas, float slab, vec3 p, vec3 n, vec3 origin, vec3 scale, vec3 offset, vec3 dims) {\n"
               "  vec3 size = vec3(textureSize(atlas, 0));\n"
               "  vec3 uvw = dst_volume_texcoord(p, origin, scale, offset, dims, size);  // axis 0's\n"
               "  float step = slab / size.y;  // from one axis's slab to the next\n"
               "  vec3 sum = vec3(0.0f);\n" +
-              (six ? "  for (int k = 0; k < 3; ++k) {\n"
-                     "    int a = 2 * k + (n[k] < 0.0f ? 1 : 0);  // +k or -k\n"
-                     "    sum += abs(n[k]) * textureLod(atlas, uvw + vec3(0.0f, float(a) * step, 0.0f), 0.0f).rgb;\n"
-                     "  }\n"
+              (!pairs.empty() ? "  for (int k = 0; k < dst_pairs; ++k) {\n"
+                                "    float d = dot(n, dst_axis[dst_pair[k].x]);\n"
+                                "    int a = d >= 0.0f ? dst_pair[k].x : dst_pair[k].y;  // the one that faces n\n"
+                                "    sum += abs(d) * textureLod(atlas, uvw + vec3(0.0f, float(a) * step, 0.0f), 0.0f).rgb;\n"
+                                "  }\n"
                    : "  for (int a = 0; a < dst_axes; ++a) {\n"
                      "    float facing = dst_facing(n, dst_axis[a]);\n"
                      "    if (facing > 0.0f) sum += facing * textureLod(atlas, uvw + vec3(0.0f, float(a) * step, 0.0f), 0.0f).rgb;\n"
