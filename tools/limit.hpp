@@ -21,8 +21,9 @@ namespace dstrans::cli {
 
 // Bytes of a schedule resource at the options' size ("gbuffer", "light buffer 2", "shadow map", "kbuffer",
 // "lit", "frame", a post target): its targets' texels summed. The k-buffer's node pool counts k nodes a
-// pixel, what the resolve reads; the shadow layers, a copy of the shadow map's targets a shadowed light. The scene's meshes and the light volumes' texels count nothing: they are
-// sized by the scene, not the screen, and a screen copy does not bound them.
+// pixel, what the resolve reads; the shadow layers, a copy of the shadow map's targets a shadowed light.
+// The scene's meshes and the light volumes' texels count nothing: they are sized by the scene, not the
+// screen, and a screen copy does not bound them.
 std::size_t resource_bytes(const std::string& resource, const render::frame_plan& plan, const render::options& o);
 
 // For each timer of the schedule, the bytes its passes move: for each pass half of what its reads and
