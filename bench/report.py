@@ -363,8 +363,10 @@ def write_volumes(w, volumes):
     w("smoke.json: %d particle systems, %d particles, %d lights (directional, point, and three shadowed spot lights, "
       "one behind a crate and one behind green glass), over %d smoke pixels. The reference lights every particle "
       "fragment by every light (Lambert, the spot lights through copies of their shadow maps); light volumes bake "
-      "the lights into a grid of N cells a side over each system, on S2's six or four axes or on fourteen (the six "
-      "and the cube's corners, a user-supplied set), and the particles read it trilinearly. Bake and particle times "
+      "the lights into a grid of N cells a side over each system, on S2's six or four axes, on fourteen (the six "
+      "and the cube's corners, a user-supplied set) or as the light's moments (L1, read with Geomerics' non-linear "
+      "lobe), stored in RGBA8 as S2 did (bytes a cell: S2's target is 20), and the particles read it trilinearly. "
+      "Bake and particle times "
       "are GPU ms as their timestamps give them; added is what the particles add to the frame (the frame less "
       "the frame without them: llvmpipe runs a compute dispatch under the timestamps of the draw before it, so "
       "the bake's own timer misses most of the bake); speed-up is the reference's added time over the volume's; "
@@ -374,8 +376,8 @@ def write_volumes(w, volumes):
       % (first["systems"], first["particles"], first["lights"], first["smoke_pixels"], S2["forward"],
          S2["volumes"], S2["bake"], S2["render"], S2["forward"] / S2["volumes"]))
     w("")
-    w("| backend | lighting | cells | bake ms | particles ms | added ms | speed-up | RMSE | RMSE on smoke |")
-    w("|---|---|---|---|---|---|---|---|---|")
+    w("| backend | lighting | cells | B/cell | bake ms | particles ms | added ms | speed-up | RMSE | RMSE on smoke |")
+    w("|---|---|---|---|---|---|---|---|---|---|")
 
     def reference(r):
         return next(x for x in volumes if x["backend"] == r["backend"] and x["technique"] == "volumes-forward")
@@ -387,8 +389,9 @@ def write_volumes(w, volumes):
         return "-" if speed(r) is None else "%.2fx" % speed(r)
     for r in volumes:
         s = r["settings"]
-        w("| %s | %s | %s | %.2f | %.2f | %.2f | %s | %.2f | %.2f |" % (
-            r["backend"], r["technique"][len("volumes-"):], "-" if s["cells"] is None else s["cells"], r["bake_ms"],
+        w("| %s | %s | %s | %s | %.2f | %.2f | %.2f | %s | %.2f | %.2f |" % (
+            r["backend"], r["technique"][len("volumes-"):], "-" if s["cells"] is None else s["cells"],
+            "-" if s["bytes_per_cell"] is None else s["bytes_per_cell"], r["bake_ms"],
             r["particles_ms"], r["lighting_ms"], speedup(r), r["rmse"], r["rmse_transparent"]))
     w("")
     for backend in sorted({r["backend"] for r in volumes}):
@@ -409,7 +412,8 @@ def plot_volumes(plt, volumes, path):
     fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4), dpi=110)
     volumes = [r for r in volumes if r["backend"] == volumes[0]["backend"]]
     ref = next(r for r in volumes if r["technique"] == "volumes-forward")
-    for lighting, colour in (("six-axes", "tab:blue"), ("four-axes", "tab:orange"), ("fourteen-axes", "tab:green")):
+    for lighting, colour in (("six-axes", "tab:blue"), ("four-axes", "tab:orange"), ("fourteen-axes", "tab:green"),
+                             ("moments", "tab:purple")):
         pts = sorted((r["settings"]["cells"], r["rmse"], r["lighting_ms"]) for r in volumes
                      if r["technique"] == "volumes-" + lighting)
         if pts:
@@ -558,11 +562,14 @@ def bound(r):
 def met(r, limit=None):
     """Whether the ratio's whole 95% interval meets its target: yes, no, or unclear where it straddles it;
     "bounded" where it does not and the machine's limit (bound) rules the target out. A target with an error
-    bound (rmse_at_most) is missed where the RMSE exceeds it, whatever the time."""
+    bound (rmse_at_most) is missed where the RMSE exceeds it, whatever the time; one with a memory bound
+    (bytes_per_cell_at_most) where the bytes a cell do."""
     if r["target"] is None:
         return "-"
     if r["target"].get("rmse_at_most") is not None and r["rmse"] > r["target"]["rmse_at_most"]:
         return "no (RMSE)"
+    if r["target"].get("bytes_per_cell_at_most") is not None and r["bytes_per_cell"] > r["target"]["bytes_per_cell_at_most"]:
+        return "no (bytes)"
     if "at_least" in r["target"]:
         want = r["target"]["at_least"]
         verdict = "yes" if r["low"] >= want else "no" if r["high"] < want else "unclear"
@@ -605,6 +612,8 @@ def write_paired(w, rows):
         target = "-" if t is None else (">= %.2f" % t["at_least"] if "at_least" in t else "<= %.2f" % t["at_most"])
         if t is not None and t.get("rmse_at_most") is not None:
             target += " at RMSE <= %g" % t["rmse_at_most"]
+        if t is not None and t.get("bytes_per_cell_at_most") is not None:
+            target += ", <= %g B a cell" % t["bytes_per_cell_at_most"]
         settings = "" if r["scene"] == "glass_room_paired" else " (A: %s)" % ", ".join(
             [r["a"]["technique"]] + ["%s %s" % kv for kv in r["a"].items() if kv[0] != "technique"])
         share = pair_share(r)

@@ -38,34 +38,6 @@ TEST_CASE("a light along an axis of the six- or four-axis set is Lambert exactly
     }
 }
 
-TEST_CASE("opposite pairs: each axis with its opposite, and a normal faces at most one of a pair", "[light_basis]") {
-  using P = std::vector<std::pair<int, int>>;
-  CHECK(opposite_pairs(six_axes()) == P{{0, 1}, {2, 3}, {4, 5}});
-  CHECK(opposite_pairs(four_axes()).empty());  // a tetrahedron's axes have no opposites
-  basis fourteen = six_axes();
-  for (int i = 0; i < 8; ++i) fourteen.axes.push_back(glm::normalize(glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1)));
-  const P pairs = opposite_pairs(fourteen);
-  CHECK(pairs == P{{0, 1}, {2, 3}, {4, 5}, {6, 13}, {7, 12}, {8, 11}, {9, 10}});
-  // One fetch a pair reads what the sum over every axis reads.
-  std::mt19937 rng(3);
-  std::vector<glm::vec3> values;
-  for (std::size_t a = 0; a < fourteen.axes.size(); ++a) values.push_back(random_unit(rng) + glm::vec3(1.0f));
-  for (int i = 0; i < 1000; ++i) {
-    const glm::vec3 n = random_unit(rng);
-    glm::vec3 by_pairs(0.0f);
-    for (const auto& [a, b] : pairs) {
-      const float d = glm::dot(n, fourteen.axes[std::size_t(a)]);
-      by_pairs += std::abs(d) * values[std::size_t(d >= 0.0f ? a : b)];
-    }
-    const glm::vec3 all = fourteen.evaluate(n, values);
-    for (int c = 0; c < 3; ++c) CHECK(by_pairs[c] == Approx(all[c]).margin(1e-5));
-  }
-  basis odd = six_axes();
-  odd.axes.pop_back();  // -Z gone: +Z has no opposite
-  CHECK(opposite_pairs(odd).empty());
-  CHECK(opposite_pairs(basis{}).empty());
-}
-
 TEST_CASE("for every light direction the average over normals is Lambert's 1/4, for any set of axes", "[light_basis]") {
   std::mt19937 rng(11);
   basis user;  // a set of seven axes of no particular symmetry that spans every direction
@@ -115,31 +87,110 @@ TEST_CASE("a baked volume is linear in its lights and samples its cells at their
   sun.direction_range = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);  // straight down: along -Y, an axis of both sets
   lamp.position_kind = glm::vec4(1.0f, 2.0f, 1.0f, 1.0f);
   lamp.direction_range.w = 5.0f;
-  for (const basis& b : {six_axes(), four_axes()}) {
-    const volume_atlas a = pack_volumes({g}, int(b.axes.size()));
-    const auto both = bake_light_volume(a, b, {sun, lamp}), one = bake_light_volume(a, b, {sun}), two = bake_light_volume(a, b, {lamp});
+  for (const volume_model& m : {on_axes(six_axes()), on_axes(four_axes()), light_moments()}) {
+    const volume_atlas a = pack_volumes({g}, m.texels());
+    const auto both = bake_light_volume(a, m, {sun, lamp}), one = bake_light_volume(a, m, {sun}), two = bake_light_volume(a, m, {lamp});
     for (std::size_t i = 0; i < both.size(); ++i) CHECK(glm::length(both[i] - one[i] - two[i]) < 1e-5f);
+    // Every value within the range the lights bound it by.
+    const float range = volume_range(g, {sun, lamp});
+    for (const glm::vec4& t : both) CHECK(glm::all(glm::lessThanEqual(t, glm::vec4(range * (1.0f + 1e-6f)))));
   }
-  // The sun comes from +Y: all of it on the +Y axis of the six-axis set, in every cell.
-  const volume_atlas six = pack_volumes({g}, 6);
-  const auto cells = bake_light_volume(six, six_axes(), {sun});
+  CHECK(on_axes(six_axes()).texels() == 5);  // S2's 20 bytes a cell
+  CHECK(on_axes(four_axes()).texels() == 3);
+  CHECK(light_moments().texels() == 3);
+  // The sun comes from +Y: all of it on the +Y axis of the six-axis set (values 6 to 8), in every cell.
+  const volume_model six = on_axes(six_axes());
+  const volume_atlas atlas = pack_volumes({g}, six.texels());
+  const auto cells = bake_light_volume(atlas, six, {sun});
   for (int z = 0; z < g.dims.z; ++z)
     for (int y = 0; y < g.dims.y; ++y)
       for (int x = 0; x < g.dims.x; ++x)
-        for (int a = 0; a < 6; ++a) CHECK(cells[atlas_texel(six, 0, {x, y, z}, a)].x == (a == 2 ? 1.0f : 0.0f));
+        for (int i = 0; i < 18; ++i) CHECK(cells[atlas_texel(atlas, 0, {x, y, z}, i / 4)][i % 4] == (i >= 6 && i < 9 ? 1.0f : 0.0f));
   // A point light at a cell's centre has no direction there; the cell next to it is lit from that side.
   volume_light at_centre;
   at_centre.position_kind = glm::vec4(0.25f, 0.25f, 0.25f, 1.0f);  // the centre of cell (0, 0, 0)
   at_centre.direction_range.w = 5.0f;
-  const auto near = bake_light_volume(six, six_axes(), {at_centre});
-  for (int a = 0; a < 6; ++a) CHECK(near[atlas_texel(six, 0, {0, 0, 0}, a)] == glm::vec4(0.0f));
-  CHECK(near[atlas_texel(six, 0, {1, 0, 0}, 1)].x > 0.0f);  // cell (1, 0, 0): the light is towards -X
+  for (const volume_model& m : {six, light_moments()}) {
+    const volume_atlas am = pack_volumes({g}, m.texels());
+    const auto near = bake_light_volume(am, m, {at_centre});
+    for (int k = 0; k < m.texels(); ++k) CHECK(near[atlas_texel(am, 0, {0, 0, 0}, k)] == glm::vec4(0.0f));
+    glm::vec4 next[5];
+    for (int k = 0; k < m.texels(); ++k) next[k] = near[atlas_texel(am, 0, {1, 0, 0}, k)];
+    // Cell (1, 0, 0): the light is towards -X.
+    CHECK(read_cell_light(m, next, {-1.0f, 0.0f, 0.0f}).x > 0.0f);
+    CHECK(read_cell_light(m, next, {-1.0f, 0.0f, 0.0f}).x > 4.0f * read_cell_light(m, next, {1.0f, 0.0f, 0.0f}).x);
+  }
+}
+
+TEST_CASE("a light's moments read back Lambert's average for every direction, and one light exactly where a surface faces it",
+          "[light_volume]") {
+  std::mt19937 rng(12);
+  const volume_model m = light_moments();
+  for (int trial = 0; trial < 20; ++trial) {
+    // One to three lights of random colours from random directions, as the bake adds them.
+    const int count = 1 + trial % 3;
+    glm::vec4 t[3] = {glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f)};
+    std::vector<std::pair<glm::vec3, glm::vec3>> lights;
+    std::uniform_real_distribution<float> u(0.1f, 1.0f);
+    for (int i = 0; i < count; ++i) {
+      const glm::vec3 l = random_unit(rng), c(u(rng), u(rng), u(rng));
+      lights.emplace_back(l, c);
+      for (int ch = 0; ch < 3; ++ch) t[ch] += c[ch] * shader::dst_moment_weights(l);
+    }
+    double lambert = 0.0, read = 0.0;
+    const int normals = 20000;
+    for (int i = 0; i < normals; ++i) {
+      const glm::vec3 n = random_unit(rng);
+      for (const auto& [l, c] : lights) lambert += c.x * std::max(0.0f, glm::dot(n, l));
+      const float v = read_cell_light(m, t, n).x;
+      CHECK(std::isfinite(v));
+      CHECK(v >= 0.0f);
+      read += v;
+    }
+    CHECK(read / normals == Approx(lambert / normals).epsilon(0.03));
+    if (count == 1) {
+      const auto& [l, c] = lights[0];
+      CHECK(read_cell_light(m, t, l).x == Approx(c.x).epsilon(1e-4));
+      CHECK(read_cell_light(m, t, -l).x == Approx(0.0f).margin(1e-6));
+    }
+  }
+  // Light from all around (opposite lights that cancel their directions) reads the same for every normal.
+  glm::vec4 even[3] = {};
+  for (glm::vec3 l : {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0)})
+    for (int ch = 0; ch < 3; ++ch) even[ch] += shader::dst_moment_weights(l);
+  CHECK(read_cell_light(m, even, {0, 1, 0}).x == Approx(0.5f));
+  CHECK(read_cell_light(m, even, {1, 0, 0}).x == Approx(0.5f));
+  // Edge inputs stay finite: nothing stored, texels that no bake writes (|M1| > M0), a NaN normal.
+  const glm::vec4 none[3] = {}, odd[3] = {glm::vec4(1.0f, 0.0f, 0.0f, 0.2f), glm::vec4(0.0f), glm::vec4(0.5f)};
+  CHECK(read_cell_light(m, none, {0, 0, 1}) == glm::vec3(0.0f));
+  CHECK(std::isfinite(read_cell_light(m, odd, {1, 0, 0}).x));
+  CHECK(read_cell_light(m, odd, glm::vec3(NAN)).z == Approx(0.0625f));  // as a normal at right angles to the light reads
+  CHECK(shader::dst_moment_weights(glm::vec3(0.0f)) == glm::vec4(0.0f));
+}
+
+TEST_CASE("a volume's range bounds what its lights can reach in it, and is 0 where none does", "[light_volume]") {
+  const volume_grid g = fit_grid({0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, {2, 2, 2});
+  volume_light far, inside, sun;
+  far.position_kind = glm::vec4(10.0f, 0.5f, 0.5f, 1.0f);
+  far.direction_range.w = 5.0f;  // ends 4 units short of the box
+  CHECK(volume_range(g, {far}) == 0.0f);
+  inside.position_kind = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
+  inside.colour_cos_outer = glm::vec4(2.0f, 0.5f, 1.0f, 0.0f);
+  CHECK(volume_range(g, {far, inside}) == 2.0f);  // the brightest channel, at full strength
+  sun.position_kind.w = 0.0f;
+  sun.colour_cos_outer = glm::vec4(0.3f, 0.3f, 0.3f, 0.0f);
+  CHECK(volume_range(g, {inside, sun}) == Approx(2.3f));
+  volume_light broken = inside;
+  broken.colour_cos_outer.x = NAN;
+  CHECK(volume_range(g, {broken, sun}) == Approx(0.3f));
+  const volume_bake_block dark = bake_block(pack_volumes({g}, 3), 0, 0.0f);
+  CHECK(dark.range == glm::vec4(0.0f));  // nothing to store, no division by zero
 }
 
 TEST_CASE("packed regions of unequal sizes read back each cell and axis where a particle reads it", "[light_volume]") {
   const std::vector<volume_grid> grids{fit_grid({0, 0, 0}, {1, 2, 1}, {5, 9, 4}), fit_grid({-3, 1, 2}, {-1, 2, 5}, {8, 3, 11}),
                                        fit_grid({2, -1, -1}, {2.5f, 0, 0}, {2, 6, 1})};
-  const int axes = 3;
+  const int axes = 3;  // texels a cell
   const volume_atlas atlas = pack_volumes(grids, axes);
   CHECK(atlas.size == glm::ivec3(15, 9 * axes, 11));
   CHECK(atlas.slab == 9);

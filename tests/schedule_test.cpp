@@ -118,7 +118,7 @@ TEST_CASE("a schedule states each pass's fixed-function state, clears and geomet
       }
       std::vector<std::string> cleared{"light buffer", "light buffer 2"};
       cleared.resize(std::size_t(p.layers));
-      if (render::particle_plan_of(s, p, o).baking) cleared.push_back("volume texels");
+      if (render::particle_plan_of(s, p, o).baking) cleared.push_back("volume atlas");
       CHECK(sched.cleared == cleared);
     }
   }

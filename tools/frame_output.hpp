@@ -38,8 +38,8 @@ struct frame {
   std::vector<std::uint32_t> kbuffer_heads;
   std::vector<glm::uvec4> kbuffer_nodes;
   std::uint32_t kbuffer_overflow = 0;
-  // The light volumes' atlas as the last bake left it (render::particle_atlas's texels, x fastest).
-  std::vector<glm::vec4> volume_texels;
+  // The light volumes' atlas as the last bake left it (render::particle_atlas's texels, RGBA8, x fastest).
+  std::vector<std::uint8_t> volume_atlas;
   std::vector<std::pair<std::string, image>> buffers;  // in the order the passes make them
   std::vector<std::string> schedule;      // the passes the last frame ran, by pass_ms's names, in order
   std::map<std::string, double> pass_ms;  // the median over the frames rendered, per pass

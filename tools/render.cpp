@@ -32,9 +32,9 @@ const char* const usage =
     "                           RGB, a coloured light's highlight in its colour (8 bytes)\n"
     "       [--k N] [--layers forward|deferred|tailless|cheap|wboit]   hair (S1): fragments shaded fully, and\n"
     "                           the rest (wboit: weighted blended OIT instead of lists)\n"
-    "       [--particles six-axes|four-axes|fourteen-axes|forward] [--volume-cells N]   particle systems\n"
-    "                           (S2): lit from light volumes of N (1 to 64) cells a side on six, four or\n"
-    "                           fourteen axes, or per fragment (the reference)\n"
+    "       [--particles six-axes|four-axes|fourteen-axes|moments|forward] [--volume-cells N]   particle\n"
+    "                           systems (S2): lit from light volumes of N (1 to 64) cells a side on six,\n"
+    "                           four or fourteen axes or from the light's moments, or per fragment (the reference)\n"
     "       [--post CHAIN.json]   post-processing after the frame: {\"post\": [...]} as in scene files, in\n"
     "                           place of the scene's own chain (deferred techniques)\n"
     "       [--interlace rows|columns|checker] [--reconstruct partner|edge-aware]   the interlaced G-buffer's\n"
@@ -82,9 +82,10 @@ int render(std::vector<std::string> args) {
     const std::string particles = take_option(args, "--particles", "six-axes");
     if (particles == "four-axes") o.particles = render::options::particle_light::four_axes;
     else if (particles == "fourteen-axes") o.particles = render::options::particle_light::fourteen_axes;
+    else if (particles == "moments") o.particles = render::options::particle_light::moments;
     else if (particles == "forward") o.particles = render::options::particle_light::forward;
     else if (particles != "six-axes")
-      throw usage_error{"--particles must be six-axes, four-axes, fourteen-axes or forward, not '" + particles + "'"};
+      throw usage_error{"--particles must be six-axes, four-axes, fourteen-axes, moments or forward, not '" + particles + "'"};
     const std::string predicate = take_option(args, "--interlace", "rows");
     if (predicate == "columns") o.interlace = render::predicate::columns;
     else if (predicate == "checker") o.interlace = render::predicate::checker;

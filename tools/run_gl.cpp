@@ -41,9 +41,10 @@ void read_back(const gl::renderer& r, const scene& s, frame& out) {
     pool.resize(std::size_t(std::min(pool[0].x, t.kbuffer_capacity)) + 1u);
     out.kbuffer_nodes.assign(pool.begin() + 1, pool.end());
   }
-  if (t.volume_texels) {
-    out.volume_texels.resize(t.volume_texel_count);
-    glGetNamedBufferSubData(t.volume_texels, 0, GLsizeiptr(t.volume_texel_count * sizeof(glm::vec4)), out.volume_texels.data());
+  if (t.volume_atlas) {
+    out.volume_atlas.resize(4 * std::size_t(t.volume_atlas_size.x) * std::size_t(t.volume_atlas_size.y) * std::size_t(t.volume_atlas_size.z));
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(t.volume_atlas, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(out.volume_atlas.size()), out.volume_atlas.data());
   }
   const format final_format = final_target_desc(o.float_targets).fmt, light_format = light_targets(o)[0].fmt;
   out.final_image = to_image(out.final_texels, final_format, w, h, view_as::rgb);

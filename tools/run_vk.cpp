@@ -45,9 +45,10 @@ result<bool> read_back(vk::device& dev, const vk::renderer& r, const scene& s, f
     out.kbuffer_overflow = pool[0].y;
     out.kbuffer_nodes.assign(pool + 1, pool + 1 + std::min(pool[0].x, t.kbuffer_capacity));
   }
-  if (t.volume_texel_count) {
-    const auto* v = static_cast<const glm::vec4*>(t.volume_texels.mapped);
-    out.volume_texels.assign(v, v + t.volume_texel_count);
+  if (t.volume_atlas.view) {
+    auto atlas = dev.read_volume(t.volume_atlas, 4, t.volume_atlas_size, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    if (!atlas) return failure{atlas.error()};
+    out.volume_atlas = *atlas;
   }
   const format final_format = final_target_desc(o.float_targets).fmt;
   out.final_image = to_image(out.final_texels, final_format, w, h, view_as::rgb);

@@ -83,12 +83,11 @@ struct renderer::impl {
   std::vector<frame_block> light_frames;  // each light's shadow-map view
   gl::targets shadow_map;
   int pictured_light = -1;  // the light whose shadow colour frame_targets::shadow_picture shows
-  GLuint atlas_texture = 0, unshadowed_buffer = 0, particle_vao = 0, particle_quads = 0, particle_regions = 0;
+  GLuint unshadowed_buffer = 0, particle_vao = 0, particle_quads = 0, particle_regions = 0;
   GLuint shadow_layers[2] = {};
   std::vector<GLuint> region_blocks;
   std::map<int, GLuint> shadowed_buffers;  // by light
   std::map<int, GLint> shadow_layer_of;    // by light
-  glm::ivec3 atlas_size{1};
   std::size_t particle_vertices = 0;
 
   // Made for the frame's size.
@@ -238,17 +237,14 @@ result<bool> renderer::impl::make_fixed() {
   return true;
 }
 
-// The atlas's texels (the bake adds into them), the 3D texture they are copied to, each region's bake block,
-// the lights per dispatch; the particles' regions and quads; the shadow maps' layers for the reference.
+// The atlas (the bake adds into it, the particles sample it), each region's bake block, the lights per
+// dispatch; the particles' regions and quads; the shadow maps' layers for the reference.
 void renderer::impl::make_particles() {
   const volume_atlas& atlas = smoke.atlas;
-  atlas_size = glm::max(atlas.size, glm::ivec3(1));  // a forced effect with no system
+  const glm::ivec3 atlas_size = glm::max(atlas.size, glm::ivec3(1));  // a forced effect with no system
   if (smoke.baking) {
-    out.volume_texel_count = std::size_t(atlas_size.x) * std::size_t(atlas_size.y) * std::size_t(atlas_size.z);
-    out.volume_texels = make_buffer(std::vector<glm::vec4>(out.volume_texel_count), "volume texels");
-    buffers.push_back(out.volume_texels);
     for (std::size_t k = 0; k < atlas.regions.size(); ++k)
-      region_blocks.push_back(make_buffer(std::vector<volume_bake_block>{bake_block(atlas, k)}, "volume region " + std::to_string(k)));
+      region_blocks.push_back(make_buffer(std::vector<volume_bake_block>{bake_block(atlas, k, smoke.ranges[k])}, "volume region " + std::to_string(k)));
     buffers.insert(buffers.end(), region_blocks.begin(), region_blocks.end());
     unshadowed_buffer = make_buffer(smoke.unshadowed_lights, "volume lights");
     buffers.push_back(unshadowed_buffer);
@@ -257,13 +253,14 @@ void renderer::impl::make_particles() {
       shadowed_buffers[i] = make_buffer(std::vector<volume_light>{l}, "volume light " + std::to_string(i));
       buffers.push_back(shadowed_buffers[i]);
     }
-    glCreateTextures(GL_TEXTURE_3D, 1, &atlas_texture);
-    textures.push_back(atlas_texture);
-    glTextureStorage3D(atlas_texture, 1, GL_RGBA32F, atlas_size.x, atlas_size.y, atlas_size.z);
-    glTextureParameteri(atlas_texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(atlas_texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(atlas_texture, wrap, GL_CLAMP_TO_EDGE);
-    label(GL_TEXTURE, atlas_texture, "volume atlas");
+    glCreateTextures(GL_TEXTURE_3D, 1, &out.volume_atlas);
+    textures.push_back(out.volume_atlas);
+    out.volume_atlas_size = atlas_size;
+    glTextureStorage3D(out.volume_atlas, 1, GL_RGBA8, atlas_size.x, atlas_size.y, atlas_size.z);
+    glTextureParameteri(out.volume_atlas, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(out.volume_atlas, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(out.volume_atlas, wrap, GL_CLAMP_TO_EDGE);
+    label(GL_TEXTURE, out.volume_atlas, "volume atlas");
   } else if (plan.shadows != shadow_mode::off && !smoke.shadowed_lights.empty()) {
     for (std::size_t t = 0; t < shadow_map.textures.size(); ++t) {
       glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &shadow_layers[t]);
@@ -274,7 +271,7 @@ void renderer::impl::make_particles() {
     }
     for (std::size_t k = 0; k < smoke.shadowed_lights.size(); ++k) shadow_layer_of[int(smoke.shadowed_lights[k].cos_inner.y)] = GLint(k);
   }
-  particle_regions = make_buffer(render::particle_regions(description, atlas), "particle regions");
+  particle_regions = make_buffer(render::particle_regions(description, smoke), "particle regions");
   std::size_t count = 0;
   for (const particle_system& ps : description.particles) count += std::size_t(std::max(ps.count, 0));
   particle_quads = make_buffer(std::vector<particle_vertex>(count * 6), "particle quads");
@@ -375,13 +372,13 @@ void renderer::impl::bake(GLuint prog, GLuint lights_buffer) const {
   bind_shadow_map();
   glUseProgram(prog);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::volume_lights), lights_buffer);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::volume_texels), out.volume_texels);
+  glBindImageTexture(binding(slot::volume_image), out.volume_atlas, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA8);
   for (std::size_t k = 0; k < smoke.atlas.regions.size(); ++k) {
     const glm::ivec4 d = smoke.atlas.regions[k].dims;
     glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::volume_region), region_blocks[k]);
     glDispatchCompute(GLuint(d.x + 3) / 4, GLuint(d.y + 3) / 4, GLuint(d.z + 3) / 4);
   }
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void renderer::impl::clear(const scheduled_pass& pass, const gl::targets& t) const {
@@ -483,13 +480,6 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
         glCopyImageSubData(shadow_map.textures[t], GL_TEXTURE_2D, 0, 0, 0, 0, shadow_layers[t], GL_TEXTURE_2D_ARRAY, 0, 0, 0,
                            shadow_layer_of.at(i), o.shadow_size, o.shadow_size, 1);
       break;
-    case pass_step::atlas:
-      glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);
-      glBindBuffer(GL_PIXEL_UNPACK_BUFFER, out.volume_texels);
-      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-      glTextureSubImage3D(atlas_texture, 0, 0, 0, 0, atlas_size.x, atlas_size.y, atlas_size.z, GL_RGBA, GL_FLOAT, nullptr);
-      glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-      break;
     case pass_step::compose:
     case pass_step::blend:
       bind(out.composed);
@@ -534,7 +524,7 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
       bind(out.composed);
       apply(pass.state);
       bind_gbuffer(binding(slot::gbuffer), out.gbuffers[0]);
-      if (atlas_texture) glBindTextureUnit(GLuint(binding(slot::volume_atlas)), atlas_texture);
+      if (out.volume_atlas) glBindTextureUnit(GLuint(binding(slot::volume_atlas)), out.volume_atlas);
       if (smoke.shadows != shadow_mode::off) bind_shadow_map();
       for (GLuint t = 0; t < 2; ++t)
         if (shadow_layers[t]) glBindTextureUnit(GLuint(binding(slot::shadow_layers)) + t, shadow_layers[t]);
@@ -605,7 +595,7 @@ void renderer::render(const camera& view, const draw_geometry& draw) {
   r.whole.begin();
   const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   for (const std::string& name : r.schedule.cleared)
-    if (name == "volume texels") glClearNamedBufferData(r.out.volume_texels, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
+    if (name == "volume atlas") glClearTexImage(r.out.volume_atlas, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
     else
       for (std::size_t k = 0; k < r.out.light_buffers[name == "light buffer" ? 0 : 1].textures.size(); ++k)
         glClearNamedFramebufferfv(r.out.light_buffers[name == "light buffer" ? 0 : 1].framebuffer, GL_COLOR, GLint(k), zero);

@@ -47,8 +47,8 @@ struct frame_targets {
   GLuint kbuffer_heads = 0;       // R32UI, each pixel's list head
   GLuint kbuffer_nodes = 0;       // a header (count, overflow, capacity) and the node pool, uvec4 each
   std::uint32_t kbuffer_capacity = 0;
-  GLuint volume_texels = 0;       // the light volumes' atlas as the bake adds into it, vec4 a texel
-  std::size_t volume_texel_count = 0;  // 0: no bake
+  GLuint volume_atlas = 0;        // the light volumes' atlas, RGBA8 3D (0: no bake)
+  glm::ivec3 volume_atlas_size{0};
 };
 
 class renderer {

@@ -308,16 +308,18 @@ result<image> device::make_storage_image(VkFormat fmt, int width, int height, co
 }
 
 result<image> device::make_sampled_image(VkFormat fmt, VkImageViewType view_type, int width, int height,
-                                         int depth_or_layers, const std::string& label) {
+                                         int depth_or_layers, const std::string& label, bool storage) {
   VkFormatFeatureFlags wanted = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
   if (view_type == VK_IMAGE_VIEW_TYPE_3D) wanted |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  if (storage) wanted |= VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
   VkFormatProperties props;
   vkGetPhysicalDeviceFormatProperties(ctx_.physical_device, fmt, &props);
   if ((props.optimalTilingFeatures & wanted) != wanted)
-    return failure{label + ": the device cannot sample (and, for a 3D image, filter) format " + std::to_string(int(fmt))};
+    return failure{label + ": the device cannot sample (and filter, a 3D image; store to, a storage one) format " + std::to_string(int(fmt))};
   if (width < 1 || height < 1 || depth_or_layers < 1) return failure{label + ": an image needs at least one texel"};
-  auto img = make_image(fmt, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                        VK_IMAGE_ASPECT_COLOR_BIT, width, height, label, view_type, depth_or_layers);
+  const VkImageUsageFlags use = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                (storage ? VkImageUsageFlags(VK_IMAGE_USAGE_STORAGE_BIT) : VkImageUsageFlags(0));
+  auto img = make_image(fmt, use, VK_IMAGE_ASPECT_COLOR_BIT, width, height, label, view_type, depth_or_layers);
   if (!img) return img;
   submit([&](VkCommandBuffer cmd) {
     VkImageMemoryBarrier b = image_barrier(img->handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
@@ -336,8 +338,8 @@ void device::destroy(targets& t) {
 }
 
 result<std::vector<std::uint8_t>> device::read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height,
-                                                    VkImageLayout current) {
-  const std::size_t n = std::size_t(width) * std::size_t(height) * bytes_per_pixel;
+                                                    VkImageLayout current, int depth) {
+  const std::size_t n = std::size_t(width) * std::size_t(height) * std::size_t(depth) * bytes_per_pixel;
   auto staging = make_buffer(VkDeviceSize(n), VK_BUFFER_USAGE_TRANSFER_DST_BIT, "dstrans readback");
   if (!staging) return failure{staging.error()};
   submit([&](VkCommandBuffer cmd) {
@@ -349,7 +351,7 @@ result<std::vector<std::uint8_t>> device::read_image(VkImage img, std::size_t by
                          1, &before);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {std::uint32_t(width), std::uint32_t(height), 1};
+    region.imageExtent = {std::uint32_t(width), std::uint32_t(height), std::uint32_t(depth)};
     vkCmdCopyImageToBuffer(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging->handle, 1, &region);
     VkImageMemoryBarrier after = image_barrier(img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, current,
                                                VK_ACCESS_TRANSFER_READ_BIT, 0, VK_IMAGE_ASPECT_COLOR_BIT);
@@ -385,6 +387,10 @@ result<std::vector<std::uint32_t>> device::read_words(const image& img, int widt
   std::vector<std::uint32_t> out(bytes->size() / 4);
   std::memcpy(out.data(), bytes->data(), bytes->size());
   return out;
+}
+
+result<std::vector<std::uint8_t>> device::read_volume(const image& img, std::size_t bytes_per_texel, glm::ivec3 size, VkImageLayout current) {
+  return read_image(img.handle, bytes_per_texel, size.x, size.y, current, size.z);
 }
 
 result<buffer> device::make_buffer(VkDeviceSize size, VkBufferUsageFlags usage, const std::string& label) {

@@ -131,11 +131,14 @@ class device {
   // A storage image (read and written by shaders, cleared and copied by transfers), in GENERAL layout.
   result<image> make_storage_image(VkFormat fmt, int width, int height, const std::string& label);
   // An image shaders sample and transfers fill (a 3D texture: VK_IMAGE_VIEW_TYPE_3D, filtered linearly, or
-  // a 2D array: VK_IMAGE_VIEW_TYPE_2D_ARRAY), in GENERAL layout; a failure if the device cannot.
+  // a 2D array: VK_IMAGE_VIEW_TYPE_2D_ARRAY), with `storage` also a storage image, in GENERAL layout; a
+  // failure if the device cannot.
   result<image> make_sampled_image(VkFormat fmt, VkImageViewType view_type, int width, int height, int depth_or_layers,
-                                   const std::string& label);
+                                   const std::string& label, bool storage = false);
   // The 32-bit texels of a storage image such as an R32_UINT one, row by row from the top.
   result<std::vector<std::uint32_t>> read_words(const image& img, int width, int height);
+  // The bytes of a 3D image of `size` texels, `bytes_per_texel` each, x fastest, from layout `current`.
+  result<std::vector<std::uint8_t>> read_volume(const image& img, std::size_t bytes_per_texel, glm::ivec3 size, VkImageLayout current);
   void destroy(image& i);
 
   // `src` as a shader module, compiled once per distinct text and stage; failures carry mapped positions.
@@ -194,7 +197,8 @@ class device {
     void* mapped = nullptr;
     std::map<VkDeviceSize, VkDeviceSize> free;  // offset to size, coalesced
   };
-  result<std::vector<std::uint8_t>> read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height, VkImageLayout current);
+  result<std::vector<std::uint8_t>> read_image(VkImage img, std::size_t bytes_per_pixel, int width, int height, VkImageLayout current,
+                                               int depth = 1);
   result<image> make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
                            const std::string& label, VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_2D,
                            int depth_or_layers = 1);

@@ -154,8 +154,7 @@ struct renderer::impl {
   std::map<int, std::uint32_t> shadow_layer_of;                  // by light
   vk::targets shadow_map;
   int pictured_light = -1;
-  image atlas, shadow_layers[2];
-  glm::ivec3 atlas_size{1};
+  image shadow_layers[2];
   VkSampler sampler = VK_NULL_HANDLE, linear_sampler = VK_NULL_HANDLE;
 
   frame_targets out;
@@ -182,7 +181,7 @@ struct renderer::impl {
   // The frame's opening clears (frame_schedule::cleared), each as the pass the barriers see.
   struct frame_clear {
     scheduled_pass pass;
-    const vk::targets* light_buffer;  // null: the volume texels
+    const vk::targets* light_buffer;  // null: the volume atlas
     std::vector<image_use> images;
     std::vector<glm::vec4> zeros;  // one a light-buffer target
   };
@@ -223,7 +222,7 @@ renderer::impl::~impl() {
   if (sampler) vkDestroySampler(d, sampler, a);
   if (linear_sampler) vkDestroySampler(d, linear_sampler, a);
   dev.destroy(shadow_map);
-  dev.destroy(atlas);
+  dev.destroy(out.volume_atlas);
   for (image& i : shadow_layers) dev.destroy(i);
   for (buffer& b : owned) dev.destroy(b);
   for (program* p : {&gbuffer[0], &gbuffer[1], &shadow, &ambient, &compose, &capture, &resolve, &particle, &bake[0], &bake[1]}) dev.destroy(p->pipe);
@@ -402,23 +401,17 @@ result<bool> renderer::impl::make_fixed() {
   return smoke.on ? make_particles() : result<bool>(true);
 }
 
-// The atlas's texels (the bake adds into them), the 3D image they are copied to, each region's bake block,
-// the lights per dispatch; the particles' regions and quads; the shadow maps' layers for the reference.
+// The atlas (the bake adds into it, the particles sample it), each region's bake block, the lights per
+// dispatch; the particles' regions and quads; the shadow maps' layers for the reference.
 result<bool> renderer::impl::make_particles() {
   const volume_atlas& a = smoke.atlas;
-  atlas_size = glm::max(a.size, glm::ivec3(1));  // a forced effect with no system
-  // Without a bake the particle pass still declares the texels: one stands in.
-  out.volume_texel_count = smoke.baking ? std::size_t(atlas_size.x) * std::size_t(atlas_size.y) * std::size_t(atlas_size.z) : 0;
   const VkBufferUsageFlags storage_use = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   std::vector<std::pair<buffer*, result<buffer>>> made;
-  made.emplace_back(&out.volume_texels, filled(dev, std::vector<glm::vec4>(std::max<std::size_t>(out.volume_texel_count, 1)),
-                                                storage_use | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                "volume texels"));
   made.emplace_back(&unshadowed, filled(dev, smoke.unshadowed_lights, storage_use, "volume lights"));
-  made.emplace_back(&regions, filled(dev, particle_regions(description, a), storage_use, "particle regions"));
+  made.emplace_back(&regions, filled(dev, particle_regions(description, smoke), storage_use, "particle regions"));
   region_blocks.resize(a.regions.size());
   for (std::size_t k = 0; k < a.regions.size(); ++k)
-    made.emplace_back(&region_blocks[k], filled(dev, std::vector<volume_bake_block>{bake_block(a, k)}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+    made.emplace_back(&region_blocks[k], filled(dev, std::vector<volume_bake_block>{bake_block(a, k, smoke.ranges[k])}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                                 "volume region " + std::to_string(k)));
   for (const volume_light& l : smoke.shadowed_lights) {
     const int i = int(l.cos_inner.y);
@@ -435,9 +428,11 @@ result<bool> renderer::impl::make_particles() {
     owned.push_back(*b);
   }
   if (smoke.baking) {
-    auto img = dev.make_sampled_image(VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_VIEW_TYPE_3D, atlas_size.x, atlas_size.y, atlas_size.z, "volume atlas");
+    const glm::ivec3 size = glm::max(a.size, glm::ivec3(1));  // a forced effect with no system
+    auto img = dev.make_sampled_image(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_VIEW_TYPE_3D, size.x, size.y, size.z, "volume atlas", true);
     if (!img) return failure{img.error()};
-    atlas = *img;
+    out.volume_atlas = *img;
+    out.volume_atlas_size = size;
   } else if (plan.shadows != shadow_mode::off && !smoke.shadowed_lights.empty()) {
     for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) {
       auto img = dev.make_sampled_image(VkFormat(info(shadow_map.formats[t]).vk_format), VK_IMAGE_VIEW_TYPE_2D_ARRAY, o.shadow_size,
@@ -535,8 +530,7 @@ const program& renderer::impl::program_of(const scheduled_pass& pass) const {
     case pass_step::resolve: return resolve;
     case pass_step::particles: return particle;
     case pass_step::post: return post[std::size_t(pass.index)];
-    case pass_step::shadow_layer:
-    case pass_step::atlas: break;
+    case pass_step::shadow_layer: break;
   }
   static const program none;  // transfers bind nothing
   return none;
@@ -577,10 +571,10 @@ bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const
   }
   if (smoke.on) {
     b.buffers[binding(slot::particle_regions)] = regions.handle;
-    b.buffers[binding(slot::volume_texels)] = out.volume_texels.handle;
     b.buffers[binding(slot::volume_lights)] = pass.step == pass_step::bake_light ? shadowed_lights.at(pass.light).handle : unshadowed.handle;
-    if (atlas.view) {
-      b.images[binding(slot::volume_atlas)] = &atlas;
+    if (out.volume_atlas.view) {
+      b.images[binding(slot::volume_image)] = &out.volume_atlas;
+      b.images[binding(slot::volume_atlas)] = &out.volume_atlas;
       b.samplers[binding(slot::volume_atlas)] = linear_sampler;
     }
     for (int t = 0; t < 2; ++t)
@@ -673,9 +667,10 @@ result<bool> renderer::impl::make_sets() {
   uses.assign(schedule.passes.size(), {});
   clears.clear();
   for (const std::string& name : schedule.cleared) {
-    const bool texels = name == "volume texels";
-    frame_clear c{scheduled_pass("", "clear " + name, texels ? pass_kind::transfer : pass_kind::fullscreen, -1, {}, {name}),
-                  texels ? nullptr : &out.light_buffers[name == "light buffer" ? 0 : 1], {}, {}};
+    const bool atlas = name == "volume atlas";
+    frame_clear c{scheduled_pass("", "clear " + name, atlas ? pass_kind::transfer : pass_kind::fullscreen, -1, {}, {name}),
+                  atlas ? nullptr : &out.light_buffers[name == "light buffer" ? 0 : 1], {}, {}};
+    if (atlas) c.images.push_back(copied(out.volume_atlas, true));
     if (c.light_buffer) {
       add_attachments(c.images, *c.light_buffer);
       c.zeros.assign(c.light_buffer->colors.size(), glm::vec4(0.0f));
@@ -718,8 +713,7 @@ const vk::targets* renderer::impl::attachments(const scheduled_pass& pass) const
     case pass_step::post: return &out.post.at(plan.post.passes[std::size_t(pass.index)].output);
     case pass_step::bake:
     case pass_step::bake_light:
-    case pass_step::shadow_layer:
-    case pass_step::atlas: break;
+    case pass_step::shadow_layer: break;
   }
   return nullptr;
 }
@@ -732,7 +726,6 @@ std::vector<image_use> renderer::impl::copies(const scheduled_pass& pass) const 
       u.push_back(copied(shadow_map.colors[t], false));
       u.push_back(copied(shadow_layers[t], true));
     }
-  if (pass.step == pass_step::atlas) u.push_back(copied(atlas, true));
   return u;
 }
 
@@ -907,13 +900,6 @@ void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, const 
                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
       }
       break;
-    case pass_step::atlas: {
-      VkBufferImageCopy copy{};
-      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      copy.imageExtent = {std::uint32_t(atlas_size.x), std::uint32_t(atlas_size.y), std::uint32_t(atlas_size.z)};
-      vkCmdCopyBufferToImage(cmd, out.volume_texels.handle, atlas.handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-      break;
-    }
   }
   if (into) dev.end_rendering(cmd);
   if (pass.step == pass_step::shadow && pass.light == pictured_light && out.shadow_picture.handle && frames_recorded == 0)
@@ -981,7 +967,9 @@ void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geomet
   for (const impl::frame_clear& c : r.clears) {
     r.barrier(cmd, c.pass, c.images);
     if (!c.light_buffer) {
-      vkCmdFillBuffer(cmd, r.out.volume_texels.handle, 0, VK_WHOLE_SIZE, 0u);
+      const VkClearColorValue zero{};
+      const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdClearColorImage(cmd, r.out.volume_atlas.handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
     } else {
       r.dev.begin_rendering(cmd, *c.light_buffer, c.zeros, true);
       r.dev.end_rendering(cmd);
@@ -994,7 +982,7 @@ void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geomet
     r.run(cmd, pass, r.sets[std::size_t(slot)][k], slot, draw);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, r.queries, first + 3 + 2 * std::uint32_t(k));
   }
-  // What the host may read once the frame is done (the lists, the baked texels), and the image the engine
+  // What the host may read once the frame is done (the lists), and the image the engine
   // reads after the frame, which the next frame waits for before it writes it.
   memory_barrier(cmd, {VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
                  {VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT});

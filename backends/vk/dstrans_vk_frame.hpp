@@ -72,8 +72,8 @@ struct frame_targets {
   image kbuffer_heads;             // R32_UINT, each pixel's list head
   buffer kbuffer_nodes;            // a header (count, overflow, capacity) and the node pool, uvec4 each
   std::uint32_t kbuffer_capacity = 0;
-  buffer volume_texels;            // the light volumes' atlas as the bake adds into it, vec4 a texel
-  std::size_t volume_texel_count = 0;  // 0: no bake
+  image volume_atlas;              // the light volumes' atlas, RGBA8 3D, SHADER_READ_ONLY_OPTIMAL after a frame (none: no bake)
+  glm::ivec3 volume_atlas_size{0};
 };
 
 class renderer {

@@ -394,6 +394,8 @@ inline const std::vector<formula>& formulas() {
           .within({"l", "axis"}, unit_vector())
           .within("norm", {1.0f, 2.0f})
           .yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_light_moments, dst_moment_weights).within("l", unit_vector()).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_light_moments, dst_moments_light).within("t", {0.0f, 1.0f}).within("n", unit_vector()).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_volume_texcoord, dst_volume_axis)
           .within({"p", "origin"}, {-4.0f, 4.0f})
           .within({"scale"}, {0.05f, 1.0f})

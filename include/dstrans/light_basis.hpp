@@ -22,7 +22,6 @@
 // contributes nothing. Projections are linear in the lights: each light is normalised on its own.
 #pragma once
 
-#include <utility>
 #include <vector>
 
 #include "detail/shared.hpp"
@@ -84,23 +83,6 @@ struct basis {
     return sum;
   }
 };
-
-// The basis's axes as pairs of opposites (a, -a), each axis in one pair, or none where some axis has no
-// opposite. Of a pair at most one faces a normal, so a read takes one fetch a pair, picked by a sign.
-inline std::vector<std::pair<int, int>> opposite_pairs(const basis& b) {
-  std::vector<std::pair<int, int>> pairs;
-  std::vector<bool> paired(b.axes.size(), false);
-  for (std::size_t i = 0; i < b.axes.size(); ++i) {
-    if (paired[i]) continue;
-    for (std::size_t j = i + 1; j < b.axes.size() && !paired[i]; ++j)
-      if (!paired[j] && glm::dot(b.axes[i], b.axes[j]) < -0.9999f) {
-        pairs.emplace_back(int(i), int(j));
-        paired[i] = paired[j] = true;
-      }
-    if (!paired[i]) return {};
-  }
-  return pairs;
-}
 
 inline basis six_axes() {
   basis b;

@@ -29,7 +29,7 @@ struct planned_target {
   std::string format;  // as the thesis's tables name formats ("RGBA8"), or "R32UI", or "buffer"
   int bytes_per_pixel;  // a pixel, or a texel of the shadow map or the volume atlas
   bool shadow_map;     // sized as the shadow map, not the screen
-  bool volume = false;  // sized as the light volumes' atlas (a texel per cell and axis), not the screen
+  bool volume = false;  // sized as the light volumes' atlas (its model's texels a cell), not the screen
 };
 
 // The k-buffer's node pool, in nodes per screen pixel: fragments that find the pool used up go to the
@@ -144,13 +144,12 @@ struct pipeline {
       p.passes.push_back({"resolve", resolve_reads, {"output"}, on});
     }
     if constexpr (light_volumes) {
-      // S2: the light of each system's bounds baked into its region of the atlas (an accumulation buffer,
-      // then the filtered texture), each shadowed spot light's dispatch right after its shadow pass; the
+      // S2: the light of each system's bounds baked into its region of the atlas (added to in place,
+      // RGBA8 as S2 stored it), each shadowed spot light's dispatch right after its shadow pass; the
       // particles, sorted, over the frame.
-      p.targets.push_back({"volume.texels", "buffer", 16, false, true});
-      p.targets.push_back({"volume.atlas", info(format::rgba32f).name, info(format::rgba32f).bytes_per_pixel, false, true});
+      p.targets.push_back({"volume.atlas", info(format::rgba8).name, info(format::rgba8).bytes_per_pixel, false, true});
       const std::vector<std::string> on{effect_switch(effect::light_volumes)};
-      p.passes.push_back({"bake", shadow, {"volume.texels", "volume.atlas"}, on});
+      p.passes.push_back({"bake", shadow, {"volume.atlas"}, on});
       p.passes.push_back({"particles", {"volume.atlas", depth}, {"output"}, on});
     }
     for (const planned_target& t : p.targets)

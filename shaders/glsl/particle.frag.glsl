@@ -10,7 +10,7 @@ layout(location = 0) out vec4 dst_particle_colour;
 struct dst_particle_region {
   vec4 origin_material;  // the region's first cell corner; w: the system's material
   vec4 scale_slab;       // a cell's size; w: the atlas's slab height
-  vec4 offset;           // the region's first texel
+  vec4 offset_range;     // the region's first texel; w: its range
   vec4 dims;             // its cells per axis
 };
 layout(std430, binding = DST_SLOT_PARTICLE_REGIONS) readonly buffer dst_particle_regions { dst_particle_region regions[]; };
@@ -61,7 +61,7 @@ void main() {
   vec3 light = dst_particle_forward(world, n);
 #else
   vec3 light = dst_volume_light(dst_volume_atlas, region.scale_slab.w, world, n, region.origin_material.xyz,
-                                region.scale_slab.xyz, region.offset.xyz, region.dims.xyz);
+                                region.scale_slab.xyz, region.offset_range.xyz, region.dims.xyz, region.offset_range.w);
 #endif
   float soft = (1.0f - r2) * (1.0f - r2) * min(gap / dst_particle_fade, 1.0f);
   float a = clamp(m.diffuse_alpha.w * particle_corner_alpha.z * soft, 0.0f, 1.0f);

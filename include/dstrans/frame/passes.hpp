@@ -65,7 +65,7 @@ std::uint32_t kbuffer_capacity(const options& o);
 std::size_t frame_bytes(const frame_plan& p, const options& o);
 std::vector<target_desc> kbuffer_tail_targets();
 
-// Light volumes (light_volumes: baked lighting for particles, light_volume.hpp). The bake of options' basis: all unshadowed lights
+// Light volumes (light_volumes: baked lighting for particles, light_volume.hpp). The bake of options' model: all unshadowed lights
 // (`shadows` off), or one shadowed spot light reading the shadow map of kind `shadows` through the
 // bake's shadow hook. The particle pass: lit from the atlas, or (options::particle_light::forward) by
 // every light, reading the shadow maps' copies in layers.
@@ -364,10 +364,10 @@ inline result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode s
            "  return dst_shadowed(light, p, lights[int(l.cos_inner.y + 0.5f)]);\n"
            "}\n";
   }
-  static_assert(binding(slot::volume_texels) == binding(slot::volume_lights) + 1 &&
+  static_assert(binding(slot::volume_image) == binding(slot::volume_lights) + 1 &&
                     binding(slot::volume_region) == binding(slot::volume_lights) + 2,
-                "the bake takes its lights, texels and region at three consecutive bindings");
-  glsl::add_light_volume_bake(src, particle_basis(o), binding(slot::volume_lights), hook);
+                "the bake takes its lights, atlas and region at three consecutive bindings");
+  glsl::add_light_volume_bake(src, particle_model(o), binding(slot::volume_lights), hook);
   return src;
 }
 
@@ -384,7 +384,7 @@ inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mo
       if (shadows == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
     }
   } else {
-    glsl::add_light_volume_read(p.fragment, particle_basis(o));
+    glsl::add_light_volume_read(p.fragment, particle_model(o));
   }
   glsl::layout_options read;
   read.sides = glsl::side::read;

@@ -81,8 +81,8 @@ struct options {
   enum class layers { forward, deferred, tailless, cheap, wboit } kbuffer_variant = layers::deferred;
   // Particle systems (light_volumes): lit from light volumes of `volume_cells` cells a
   // side on S2's six or four axes or on fourteen (a user-supplied set: the six and the cube's eight
-  // corners), or by the forward reference, which lights each fragment by every light.
-  enum class particle_light { six_axes, four_axes, fourteen_axes, forward } particles = particle_light::six_axes;
+  // corners), from the light's moments, or by the forward reference, which lights each fragment by every light.
+  enum class particle_light { six_axes, four_axes, fourteen_axes, moments, forward } particles = particle_light::six_axes;
   int volume_cells = 16;
   // Every light drawn as a full-screen triangle instead of its volume mesh: the same light in every pixel
   // the mesh covers, for checking the meshes (attenuation and falloff leave the rest at zero).
@@ -146,6 +146,7 @@ inline const char* particle_light_name(options::particle_light p) {
     case options::particle_light::six_axes: return "six-axes";
     case options::particle_light::four_axes: return "four-axes";
     case options::particle_light::fourteen_axes: return "fourteen-axes";
+    case options::particle_light::moments: return "moments";
     case options::particle_light::forward: return "forward";
   }
   return "?";
@@ -170,18 +171,17 @@ frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o);
 frame_block light_frame(const scene& s, const light_block& l, const options& o);
 std::vector<material_block> material_blocks(const scene& s);
 std::vector<light_block> light_blocks(const scene& s);
-// Light volumes: the basis the options pick, the atlas of the scene's particle systems (a region of
-// options::volume_cells cells a side over each system's bounds), and each system's region as the particle
-// pass reads it.
-basis particle_basis(const options& o);
+// Light volumes: the model the options pick, the atlas of the scene's particle systems (a region of
+// options::volume_cells cells a side over each system's bounds), and (particle_regions, after
+// particle_plan) each system's region as the particle pass reads it.
+volume_model particle_model(const options& o);
 volume_atlas particle_atlas(const scene& s, const options& o);
 struct particle_region {
   glm::vec4 origin_material;  // the region's first cell corner; w: the system's material
   glm::vec4 scale_slab;       // a cell's size; w: the atlas's slab height
-  glm::vec4 offset;           // the region's first texel
+  glm::vec4 offset_range;     // the region's first texel; w: its range
   glm::vec4 dims;             // its cells per axis
 };
-std::vector<particle_region> particle_regions(const scene& s, const volume_atlas& a);
 // What a frame does for particle systems (both backends): whether it draws them (deferred techniques),
 // by the forward reference or from baked volumes; the atlas; the lights as the bake reads them (from
 // their light blocks, their index in s.lights in cos_inner.y for the shadow hook): the shadowed ones, each
@@ -191,13 +191,15 @@ struct particle_plan {
   bool on = false, reference = false, baking = false;
   shadow_mode shadows = shadow_mode::off;  // the maps the particle pass and the bake read: none without a shadowed light
   volume_atlas atlas;
+  std::vector<float> ranges;  // a region each: volume_range over all the lights
   std::vector<volume_light> shadowed_lights, unshadowed_lights;
 };
 particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o);
+std::vector<particle_region> particle_regions(const scene& s, const particle_plan& smoke);
 
 // The passes a frame of `s` runs, in the order both renderers run them (dstrans/frame/schedule.hpp): its
 // resources are "scene" (the frame's input), the G-buffers, light buffers, the shadow map, the k-buffer,
-// the light volumes' texels and atlas, the shadow maps' layers, and "frame" (the composed image), which
+// the light volumes' atlas, the shadow maps' layers, and "frame" (the composed image), which
 // the post chain reads; the frame's output is the post chain's.
 frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o);
 
@@ -276,12 +278,13 @@ inline result<bool> fits_device(const options& o, int largest) {
 
 inline volume volume_of(const light& l, const options& o) { return o.fullscreen_lights ? volume::fullscreen : frame_detail::shape_of(l); }
 
-inline basis particle_basis(const options& o) {
-  if (o.particles == options::particle_light::four_axes) return four_axes();
+inline volume_model particle_model(const options& o) {
+  if (o.particles == options::particle_light::moments) return light_moments();
+  if (o.particles == options::particle_light::four_axes) return on_axes(four_axes());
   basis b = six_axes();
   if (o.particles == options::particle_light::fourteen_axes)  // a user-supplied set: the cube's faces and corners
     for (int i = 0; i < 8; ++i) b.axes.push_back(glm::normalize(glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1)));
-  return b;
+  return on_axes(b);
 }
 
 inline volume_atlas particle_atlas(const scene& s, const options& o) {
@@ -291,15 +294,16 @@ inline volume_atlas particle_atlas(const scene& s, const options& o) {
     const auto [lo, hi] = particle_bounds(ps);
     grids.push_back(fit_grid(lo, hi, glm::ivec3(n)));
   }
-  return pack_volumes(grids, int(particle_basis(o).axes.size()));
+  return pack_volumes(grids, particle_model(o).texels());
 }
 
-inline std::vector<particle_region> particle_regions(const scene& s, const volume_atlas& a) {
+inline std::vector<particle_region> particle_regions(const scene& s, const particle_plan& smoke) {
   std::vector<particle_region> out;
+  const volume_atlas& a = smoke.atlas;
   for (std::size_t r = 0; r < a.regions.size() && r < s.particles.size(); ++r) {
     const volume_grid& g = a.regions[r];
     out.push_back({glm::vec4(glm::vec3(g.origin), float(s.particles[r].material)), glm::vec4(glm::vec3(g.scale), float(a.slab)),
-                   glm::vec4(glm::vec3(a.offsets[r]), 0.0f), glm::vec4(glm::vec3(g.dims), 0.0f)});
+                   glm::vec4(glm::vec3(a.offsets[r]), smoke.ranges[r]), glm::vec4(glm::vec3(g.dims), 0.0f)});
   }
   return out;
 }
@@ -319,6 +323,9 @@ inline particle_plan particle_plan_of(const scene& s, const frame_plan& p, const
     (p.lookups[i] != shadow_mode::off ? out.shadowed_lights : out.unshadowed_lights).push_back(v);
   }
   out.shadows = out.shadowed_lights.empty() ? shadow_mode::off : p.shadows;
+  std::vector<volume_light> all = out.unshadowed_lights;
+  all.insert(all.end(), out.shadowed_lights.begin(), out.shadowed_lights.end());
+  for (const volume_grid& g : out.atlas.regions) out.ranges.push_back(volume_range(g, all));
   return out;
 }
 
@@ -411,9 +418,9 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
     a.clear_depth = true;
   }
   const particle_plan smoke = particle_plan_of(s, p, o);
-  if (smoke.baking) out.cleared.push_back("volume texels");
+  if (smoke.baking) out.cleared.push_back("volume atlas");
   if (smoke.baking && !smoke.unshadowed_lights.empty())
-    add(pass_step::bake, "bake", "bake pass", pass_kind::dispatch, -1, {"scene"}, {"volume texels"});
+    add(pass_step::bake, "bake", "bake pass", pass_kind::dispatch, -1, {"scene", "volume atlas"}, {"volume atlas"});
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const int l = int(i);
     const std::string n = std::to_string(i);
@@ -426,7 +433,7 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
       sh.clears = p.shadows == shadow_mode::transparent ? std::vector<glm::vec4>{far_plane, far_plane} : std::vector<glm::vec4>{far_plane};
       sh.clear_depth = true;
       if (smoke.baking)
-        add(pass_step::bake_light, "bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume texels"});
+        add(pass_step::bake_light, "bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map", "volume atlas"}, {"volume atlas"});
       if (smoke.reference)
         add(pass_step::shadow_layer, "particles", "shadow map into its layer, light " + n, pass_kind::transfer, l, {"shadow map"},
             {"shadow layers"});
@@ -453,7 +460,6 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
       }
     }
   }
-  if (smoke.baking) add(pass_step::atlas, "bake", "bake pass, into the atlas", pass_kind::transfer, -1, {"volume texels"}, {"volume atlas"});
   if (p.forward) {
     add(pass_step::blend, "blend", "forward blend pass", pass_kind::fullscreen, -1, {"lit"}, {"frame"});
   } else {

@@ -39,10 +39,10 @@ inline const char* pass_kind_name(pass_kind k) {
 // Which step of the technique a pass is, which decides its program and bindings: the G-buffer, forward
 // rendering's ambient pass, a light's shadow map, a light into the light buffer or (forward) into the lit
 // colour, the light volumes' bake of the unshadowed lights or of one shadowed light, a shadow map copied
-// into its layer, the baked texels into the atlas, the compose or forward blend, the k-buffer's capture
+// into its layer, the compose or forward blend, the k-buffer's capture
 // and resolve, the particles, a post-processing pass.
 enum class pass_step {
-  gbuffer, ambient, shadow, light, forward_light, bake, bake_light, shadow_layer, atlas, compose, blend, capture,
+  gbuffer, ambient, shadow, light, forward_light, bake, bake_light, shadow_layer, compose, blend, capture,
   resolve, particles, post
 };
 
