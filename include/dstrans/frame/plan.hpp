@@ -420,7 +420,7 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
   const particle_plan smoke = particle_plan_of(s, p, o);
   if (smoke.baking) out.cleared.push_back("volume atlas");
   if (smoke.baking && !smoke.unshadowed_lights.empty())
-    add(pass_step::bake, "bake", "bake pass", pass_kind::dispatch, -1, {"scene", "volume atlas"}, {"volume atlas"});
+    add(pass_step::bake, "bake", "bake pass", pass_kind::dispatch, -1, {"scene"}, {"volume atlas"});
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const int l = int(i);
     const std::string n = std::to_string(i);
@@ -433,7 +433,7 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
       sh.clears = p.shadows == shadow_mode::transparent ? std::vector<glm::vec4>{far_plane, far_plane} : std::vector<glm::vec4>{far_plane};
       sh.clear_depth = true;
       if (smoke.baking)
-        add(pass_step::bake_light, "bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map", "volume atlas"}, {"volume atlas"});
+        add(pass_step::bake_light, "bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume atlas"});
       if (smoke.reference)
         add(pass_step::shadow_layer, "particles", "shadow map into its layer, light " + n, pass_kind::transfer, l, {"shadow map"},
             {"shadow layers"});
