@@ -95,7 +95,7 @@ TEST_CASE("a baked volume is linear in its lights and samples its cells at their
     const float range = volume_range(g, {sun, lamp});
     for (const glm::vec4& t : both) CHECK(glm::all(glm::lessThanEqual(t, glm::vec4(range * (1.0f + 1e-6f)))));
   }
-  CHECK(on_axes(six_axes()).texels() == 5);  // S2's 20 bytes a cell
+  CHECK(on_axes(six_axes()).bytes_per_cell() == 20);  // S2's five RGBA8 texels
   CHECK(on_axes(four_axes()).texels() == 3);
   CHECK(light_moments().texels() == 3);
   // The sun comes from +Y: all of it on the +Y axis of the six-axis set (values 6 to 8), in every cell.
@@ -166,6 +166,7 @@ TEST_CASE("a light's moments read back Lambert's average for every direction, an
   CHECK(std::isfinite(read_cell_light(m, odd, {1, 0, 0}).x));
   CHECK(read_cell_light(m, odd, glm::vec3(NAN)).z == Approx(0.0625f));  // as a normal at right angles to the light reads
   CHECK(shader::dst_moment_weights(glm::vec3(0.0f)) == glm::vec4(0.0f));
+  CHECK(shader::dst_moment_weights(glm::vec3(NAN, 0.0f, 1.0f)) == glm::vec4(0.0f));
 }
 
 TEST_CASE("a volume's range bounds what its lights can reach in it, and is 0 where none does", "[light_volume]") {

@@ -1128,7 +1128,8 @@ std::vector<glm::vec4> decoded(const volume_atlas& a, const std::vector<std::uin
   return out;
 }
 
-// Each region's range for `lights`, the largest twice over: the regions need not share one.
+// Each region's range for `lights`, every region after the first at twice its bound, so that each region
+// is decoded by its own range, not a shared one.
 std::vector<float> ranges_for(const volume_atlas& a, const std::vector<volume_light>& lights) {
   std::vector<float> out;
   for (std::size_t r = 0; r < a.regions.size(); ++r) out.push_back(volume_range(a.regions[r], lights) * (r ? 2.0f : 1.0f));

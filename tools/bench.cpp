@@ -233,7 +233,7 @@ result<json> volume_records(const scene& smoke, const render::options& base, boo
                        {"scene", "smoke"},
                        {"backend", backend},
                        {"settings", {{"cells", volumes ? json(cells) : json(nullptr)},
-                                     {"bytes_per_cell", volumes ? json(4 * render::particle_model(o).texels()) : json(nullptr)},
+                                     {"bytes_per_cell", volumes ? json(render::particle_model(o).bytes_per_cell()) : json(nullptr)},
                                      {"systems", smoke.particles.size()}, {"particles", particles},
                                      {"lights", smoke.lights.size()}, {"smoke_pixels", smoke_pixels},
                                      {"width", base.width}, {"height", base.height}, {"frames", f.frames}}},

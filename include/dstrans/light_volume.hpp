@@ -66,7 +66,7 @@ DST_FN vec3 dst_volume_texcoord(vec3 p, vec3 origin, vec3 scale, vec3 offset, ve
 // A light with no direction (a point light at the cell's centre) adds nothing, as it lights no surface.
 DSTRANS_SHARED(dst_light_moments,
 DST_FN vec4 dst_moment_weights(vec3 l) {
-  if (!(dot(l, l) > 0.0f)) return vec4(0.0f);
+  if (isnan(l.x) || isnan(l.y) || isnan(l.z) || dot(l, l) <= 0.0f) return vec4(0.0f);
   return vec4(0.5f + 0.5f * l.x, 0.5f + 0.5f * l.y, 0.5f + 0.5f * l.z, 1.0f);
 }
 DST_FN float dst_moments_light(vec4 t, vec3 n) {
@@ -94,8 +94,9 @@ struct volume_model {
   basis axes;  // kind::axes only
   // Values a cell: three an axis, or four for each of R, G and B.
   int values() const { return what == kind::moments ? 12 : 3 * int(axes.axes.size()); }
-  // RGBA8 texels a cell (each in its own slab of the atlas), so 4 * texels() bytes.
+  // RGBA8 texels a cell (each in its own slab of the atlas), and their bytes.
   int texels() const { return (values() + 3) / 4; }
+  int bytes_per_cell() const { return 4 * texels(); }
 };
 inline volume_model on_axes(basis b) { return {volume_model::kind::axes, std::move(b)}; }
 inline volume_model light_moments() { return {volume_model::kind::moments, {}}; }
