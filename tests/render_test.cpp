@@ -1391,14 +1391,16 @@ TEST_CASE("smoke lit from light volumes stays near the per-fragment reference on
                  moments = rmse(images[n + " moments"], images[n + " forward"]);
     INFO(n << ": six axes " << six << ", four axes " << four << ", fourteen axes " << fourteen << ", moments " << moments);
     CHECK(rmse(images[n + " forward"], without->final_image) > 4.0 * six);  // the smoke is there
-    // Measured 5.6, 5.9 and 4.6 (the basis's directions, not the grid, make the error: 8 to 32 cells
-    // change it by 0.2); more axes, less error.
-    CHECK(six < 6.0);
-    CHECK(four < 6.5);
-    CHECK(fourteen < 5.0);
+    // Measured 6.0-6.1, 5.5 and 5.0-5.1, each particle reading the cell at its centre (read per pixel:
+    // 5.6, 5.9 and 4.6); the basis's directions, not the grid, make the error (8 to 32 cells change it by
+    // 0.2); more axes, less error.
+    CHECK(six < 6.5);
+    CHECK(four < 6.0);
+    CHECK(fourteen < 5.5);
     CHECK(fourteen < six);
-    // Measured 3.2: the moments' lobe follows where the light comes from better than any of the axes.
-    CHECK(moments < 4.0);
+    // Measured 2.9 (3.2 per pixel): the moments' lobe follows where the light comes from better than any
+    // of the axes.
+    CHECK(moments < 3.5);
     CHECK(moments < fourteen);
   }
   // The backends agree on the smoke (their only differences here are a few pixels at the pane's edge).

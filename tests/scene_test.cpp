@@ -226,6 +226,15 @@ TEST_CASE("particle systems: the same particles for a seed, centred inside their
     CHECK(std::abs(across.z) < 1e-4f);
     CHECK(quads[q].corner == glm::vec2(-1.0f, -1.0f));
     CHECK(quads[q + 2].corner == glm::vec2(1.0f, 1.0f));
+    // Every corner leads back to the centre by its corner and size, as the particle pass finds the cell it reads.
+    const glm::vec3 right(view[0][0], view[1][0], view[2][0]), up(view[0][1], view[1][1], view[2][1]);
+    for (std::size_t k = q; k < q + 6; ++k) {
+      const particle_vertex& v = quads[k];
+      CHECK(v.size == quads[q].size);
+      CHECK(v.size > 0.0f);
+      CHECK(v.size <= ps.size);
+      CHECK(glm::length(v.position - v.size * (v.corner.x * right + v.corner.y * up) - centre) < 1e-4f);
+    }
     ++systems[quads[q].system];
   }
   CHECK(systems[0] == 200u);

@@ -12,7 +12,8 @@
 //   // clear the atlas (an RGBA8 3D image) to 0; per region: dispatch ceil(dims / 4) groups, lights at
 //   // binding 0, the atlas as a storage image at 1, bake_block(atlas, r, range) at 2
 //   std::vector<glm::vec4> texels = dstrans::bake_light_volume(atlas, m, lights);   // the CPU's, unscaled
-//   dstrans::glsl::add_light_volume_read(fs, m);   // dst_volume_light(atlas, slab, p, n, region..., range)
+//   dstrans::glsl::add_light_volume_fetch(vs, m);  // dst_volume_texels(atlas, slab, p, region..., t): a cell's texels
+//   dstrans::glsl::add_light_volume_read(fs, m);   // dst_volume_light(t, n, range): their light for normal n
 //
 // Choices: a cell is sampled at its centre, origin + (id + 0.5) * scale, with a scale per axis fitted to
 // the bounds (the group count is rounded up; invocations past the grid return). A cell's values go in
@@ -257,6 +258,10 @@ inline std::string basis_constants(const basis& b) {
 }
 // Value i of a cell as GLSL, from its texels `t[]`: "t[1].z".
 inline std::string value_of(std::size_t i) { return "t[" + std::to_string(i / 4) + "]." + "xyzw"[i % 4]; }
+// DST_VOLUME_TEXELS, the texels of a cell of model m, for the fetch and the read (once, whichever comes first).
+inline std::string texels_define(const volume_model& m) {
+  return "#ifndef DST_VOLUME_TEXELS\n#define DST_VOLUME_TEXELS " + std::to_string(m.texels()) + "\n#endif\n";
+}
 }  // namespace detail
 
 // The bake as a compute shader for model `m`: lights at storage binding `first_binding`, the atlas (an
@@ -313,18 +318,35 @@ inline void add_light_volume_bake(source& src, const volume_model& m, int first_
           __FILE__, __LINE__);
 }
 
-// What a particle's fragment shader calls to read its light (model `m`, the atlas a 3D texture laid out by
+// What a particle's shader calls to fetch its cell (model `m`, the atlas a 3D texture laid out by
 // pack_volumes with m's texels a cell):
-//   vec3 dst_volume_light(sampler3D atlas, float slab, vec3 p, vec3 n, vec3 origin, vec3 scale, vec3 offset, vec3 dims,
-//                         float range)
-// the light at world point p for unit normal n from the region (origin, scale, first texel, dims, range):
-// each texel of the cell trilinearly filtered (values are linear in the light, so filtering them filters
-// the light's projection), then sum over axes of max(0, n . axis) times the axis's value, or the moments'
-// reconstruction per channel; times the range.
+//   void dst_volume_texels(sampler3D atlas, float slab, vec3 p, vec3 origin, vec3 scale, vec3 offset, vec3 dims,
+//                          out vec4 t[DST_VOLUME_TEXELS])
+// each texel of the cell at world point p of the region (origin, scale, first texel, dims), trilinearly
+// filtered. Texels are linear in the light, so filtering them filters the light's projection, and texels
+// fetched at a particle's corners and interpolated over it are texels too: the reference pipeline fetches
+// them per vertex, which takes every texture fetch out of the particles' fragments.
+inline void add_light_volume_fetch(source& src, const volume_model& m) {
+  src.add_shared(text::dst_volume_texcoord);
+  src.add(detail::texels_define(m) +
+              "void dst_volume_texels(sampler3D atlas, float slab, vec3 p, vec3 origin, vec3 scale, vec3 offset, vec3 dims,\n"
+              "                       out vec4 t[DST_VOLUME_TEXELS]) {\n"
+              "  vec3 size = vec3(textureSize(atlas, 0));\n"
+              "  vec3 uvw = dst_volume_texcoord(p, origin, scale, offset, dims, size);  // texel 0's\n"
+              "  float step = slab / size.y;  // from one texel's slab to the next\n"
+              "  for (int k = 0; k < DST_VOLUME_TEXELS; ++k)\n"
+              "    t[k] = textureLod(atlas, uvw + vec3(0.0f, float(k) * step, 0.0f), 0.0f);\n"
+              "}\n",
+          __FILE__, __LINE__);
+}
+
+// What a particle's shader calls to turn a cell's texels (dst_volume_texels) into light:
+//   vec3 dst_volume_light(vec4 t[DST_VOLUME_TEXELS], vec3 n, float range)
+// the light for unit normal n: the sum over axes of max(0, n . axis) times the axis's value, or the
+// moments' reconstruction per channel; times the region's range.
 inline void add_light_volume_read(source& src, const volume_model& m) {
   const bool moments = m.what == volume_model::kind::moments;
   src.add_shared(moments ? text::dst_light_moments : text::dst_light_basis);
-  src.add_shared(text::dst_volume_texcoord);
   std::string sum;
   if (moments) {
     sum = "  vec3 sum = vec3(dst_moments_light(t[0], n), dst_moments_light(t[1], n), dst_moments_light(t[2], n));\n";
@@ -334,16 +356,9 @@ inline void add_light_volume_read(source& src, const volume_model& m) {
       sum += "  sum += dst_facing(n, dst_axis[" + std::to_string(a) + "]) * vec3(" + detail::value_of(3 * a) + ", " +
              detail::value_of(3 * a + 1) + ", " + detail::value_of(3 * a + 2) + ");\n";
   }
-  src.add((moments ? std::string() : detail::basis_constants(m.axes)) +
-              "vec3 dst_volume_light(sampler3D atlas, float slab, vec3 p, vec3 n, vec3 origin, vec3 scale, vec3 offset, vec3 dims,\n"
-              "                      float range) {\n"
-              "  vec3 size = vec3(textureSize(atlas, 0));\n"
-              "  vec3 uvw = dst_volume_texcoord(p, origin, scale, offset, dims, size);  // texel 0's\n"
-              "  float step = slab / size.y;  // from one texel's slab to the next\n"
-              "  vec4 t[" + std::to_string(m.texels()) + "];\n"
-              "  for (int k = 0; k < " + std::to_string(m.texels()) + "; ++k)\n"
-              "    t[k] = textureLod(atlas, uvw + vec3(0.0f, float(k) * step, 0.0f), 0.0f);\n" +
-              sum + "  return sum * range;\n"
+  src.add(detail::texels_define(m) + (moments ? std::string() : detail::basis_constants(m.axes)) +
+              "vec3 dst_volume_light(vec4 t[DST_VOLUME_TEXELS], vec3 n, float range) {\n" + sum +
+              "  return sum * range;\n"
               "}\n",
           __FILE__, __LINE__);
 }

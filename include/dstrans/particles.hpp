@@ -45,13 +45,13 @@ inline std::pair<glm::vec3, glm::vec3> particle_bounds(const particle_system& ps
 }
 
 // A corner of a particle's quad: world position, the system it belongs to, the corner in [-1, 1]^2
-// (right, up as the camera sees it), the particle's alpha share.
+// (right, up as the camera sees it), the particle's alpha share and its size (the quad's half width).
 struct particle_vertex {
   glm::vec3 position;
   std::uint32_t system;
   glm::vec2 corner;
   float alpha;
-  float unused = 0.0f;
+  float size;
 };
 
 // Every particle of `s` as two triangles facing camera `c`, the farthest first (by distance along the
@@ -73,7 +73,7 @@ inline std::vector<particle_vertex> particle_quads(const scene& s, const camera&
   out.reserve(all.size() * 6);
   for (const placed& q : all)
     for (glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
-      out.push_back({q.p.position + q.p.size * (corner.x * right + corner.y * up), q.system, corner, q.p.alpha});
+      out.push_back({q.p.position + q.p.size * (corner.x * right + corner.y * up), q.system, corner, q.p.alpha, q.p.size});
   return out;
 }
 

@@ -1,26 +1,29 @@
 // The particle pass (S2): a particle is a soft disc lit as the sphere it stands for (the normal from its
-// corner, facing the camera at the centre), from its system's light volume or (DST_PARTICLES_FORWARD, the
-// reference) by every light per fragment with Lambert's law, and laid over the frame premultiplied, with in
-// alpha the share of the frame that shows through (the blend keeps colour = source + frame * alpha).
+// corner, facing the camera at the centre), from the texels of the cell at its centre or
+// (DST_PARTICLES_FORWARD, the reference) by every light per fragment with Lambert's law, and laid over the
+// frame premultiplied, with in alpha the share of the frame that shows through (the blend keeps
+// colour = source + frame * alpha).
 layout(location = 0) in vec3 world;
-layout(location = 1) flat in uint particle_system;
-layout(location = 2) in vec3 particle_corner_alpha;
-layout(location = 0) out vec4 dst_particle_colour;
-
-struct dst_particle_region {
-  vec4 origin_material;  // the region's first cell corner; w: the system's material
-  vec4 scale_slab;       // a cell's size; w: the atlas's slab height
-  vec4 offset_range;     // the region's first texel; w: its range
-  vec4 dims;             // its cells per axis
-};
-layout(std430, binding = DST_SLOT_PARTICLE_REGIONS) readonly buffer dst_particle_regions { dst_particle_region regions[]; };
+layout(location = 1) in vec3 particle_corner_alpha;
+layout(location = 2) flat in vec4 particle_material;
 #ifndef DST_PARTICLES_FORWARD
-layout(binding = DST_SLOT_VOLUME_ATLAS) uniform sampler3D dst_volume_atlas;
+layout(location = 3) flat in float particle_range;
+layout(location = 4) flat in vec4 particle_texels[DST_VOLUME_TEXELS];
 #endif
+layout(location = 0) out vec4 dst_particle_colour;
 
 // World units over which a particle fades out as it nears the surface behind it (soft particles): without
 // it, quads cut the floor and walls along hard lines.
 const float dst_particle_fade = 0.3f;
+
+// The world position at window depth `depth` on the ray through the fragment at `p`: as
+// dst_world_position, without a matrix product a fragment. Points of one pixel unproject to h(d) =
+// h(z) + (d - z) * inv_view_proj[2], and h(z) = p * gl_FragCoord.w for the fragment's own depth z.
+vec3 dst_behind(vec3 p, float depth) {
+  vec4 along = frame.inv_view_proj[2];
+  float delta = depth - gl_FragCoord.z;
+  return (p * gl_FragCoord.w + delta * along.xyz) / (gl_FragCoord.w + delta * along.w);
+}
 
 #ifdef DST_PARTICLES_FORWARD
 vec3 dst_particle_forward(vec3 p, vec3 n) {
@@ -47,12 +50,9 @@ void main() {
   vec2 corner = particle_corner_alpha.xy;
   float r2 = dot(corner, corner);
   if (r2 >= 1.0f) discard;
-  ivec2 pixel = dst_pixel();
   vec3 eye = frame.camera_position.xyz;
-  float gap = distance(dst_world_position(pixel, dst_gbuffer_read(pixel).depth), eye) - distance(world, eye);
+  float gap = distance(dst_behind(world, dst_gbuffer_read(dst_pixel()).depth), eye) - distance(world, eye);
   if (!(gap > 0.0f)) discard;
-  dst_particle_region region = regions[particle_system];
-  dst_material_data m = materials[uint(region.origin_material.w + 0.5f)];
   vec3 right = vec3(frame.view[0][0], frame.view[1][0], frame.view[2][0]);
   vec3 up = vec3(frame.view[0][1], frame.view[1][1], frame.view[2][1]);
   vec3 toward = vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2]);
@@ -60,10 +60,9 @@ void main() {
 #ifdef DST_PARTICLES_FORWARD
   vec3 light = dst_particle_forward(world, n);
 #else
-  vec3 light = dst_volume_light(dst_volume_atlas, region.scale_slab.w, world, n, region.origin_material.xyz,
-                                region.scale_slab.xyz, region.offset_range.xyz, region.dims.xyz, region.offset_range.w);
+  vec3 light = dst_volume_light(particle_texels, n, particle_range);
 #endif
   float soft = (1.0f - r2) * (1.0f - r2) * min(gap / dst_particle_fade, 1.0f);
-  float a = clamp(m.diffuse_alpha.w * particle_corner_alpha.z * soft, 0.0f, 1.0f);
-  dst_particle_colour = vec4(m.diffuse_alpha.xyz * (frame.ambient.xyz + light) * a, 1.0f - a);
+  float a = clamp(particle_material.w * particle_corner_alpha.z * soft, 0.0f, 1.0f);
+  dst_particle_colour = vec4(particle_material.xyz * (frame.ambient.xyz + light) * a, 1.0f - a);
 }

@@ -373,7 +373,6 @@ inline result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode s
 
 inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
   pass_sources p;
-  if (auto ok = pass_detail::finish(p.vertex, shaders, {"particle.vert.glsl"}); !ok) return failure{ok.error()};
   std::vector<std::string> switches;
   if (o.particles == options::particle_light::forward) {
     switches.push_back("DST_PARTICLES_FORWARD");
@@ -384,8 +383,10 @@ inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mo
       if (shadows == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
     }
   } else {
+    glsl::add_light_volume_fetch(p.vertex, particle_model(o));
     glsl::add_light_volume_read(p.fragment, particle_model(o));
   }
+  if (auto ok = pass_detail::finish(p.vertex, shaders, {"particle.vert.glsl"}, switches); !ok) return failure{ok.error()};
   glsl::layout_options read;
   read.sides = glsl::side::read;
   read.first_binding = binding(slot::gbuffer);
