@@ -188,6 +188,25 @@ TEST_CASE("a volume's range bounds what its lights can reach in it, and is 0 whe
   CHECK(dark.range == glm::vec4(0.0f));  // nothing to store, no division by zero
 }
 
+TEST_CASE("one bake dispatch covers every region's cells, each region's block at its index", "[light_volume]") {
+  const std::vector<volume_grid> grids{fit_grid({0, 0, 0}, {1, 1, 1}, {5, 9, 4}), fit_grid({2, 0, 0}, {3, 1, 1}, {8, 3, 11})};
+  const volume_atlas a = pack_volumes(grids, 3);
+  const glm::ivec3 groups = bake_groups(a);
+  CHECK(groups == glm::ivec3(4, 3, 3));  // 13 x 9 x 11 texels of the first slab, rounded up to fours
+  for (std::size_t r = 0; r < grids.size(); ++r) {
+    const glm::ivec3 last = a.offsets[r] + glm::ivec3(grids[r].dims) - 1;
+    CHECK(glm::all(glm::lessThan(last, 4 * groups)));
+  }
+  const std::vector<volume_bake_block> blocks = bake_blocks(a, {2.0f, 0.5f});
+  REQUIRE(blocks.size() == 2u);
+  CHECK(blocks[1].offset_slab == glm::ivec4(5, 0, 0, 9));
+  CHECK(blocks[1].grid.dims == grids[1].dims);
+  CHECK(blocks[0].atlas_size == glm::ivec4(13, 27, 11, 0));
+  CHECK(blocks[1].range == glm::vec4(0.5f, 2.0f, 0.0f, 0.0f));
+  CHECK(bake_blocks(a, {2.0f})[1].range == glm::vec4(0.0f));  // a region without a range stores nothing
+  CHECK(bake_groups(pack_volumes({}, 3)) == glm::ivec3(0));     // no region, nothing dispatched
+}
+
 TEST_CASE("packed regions of unequal sizes read back each cell and axis where a particle reads it", "[light_volume]") {
   const std::vector<volume_grid> grids{fit_grid({0, 0, 0}, {1, 2, 1}, {5, 9, 4}), fit_grid({-3, 1, 2}, {-1, 2, 5}, {8, 3, 11}),
                                        fit_grid({2, -1, -1}, {2.5f, 0, 0}, {2, 6, 1})};

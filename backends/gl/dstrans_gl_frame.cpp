@@ -83,9 +83,8 @@ struct renderer::impl {
   std::vector<frame_block> light_frames;  // each light's shadow-map view
   gl::targets shadow_map;
   int pictured_light = -1;  // the light whose shadow colour frame_targets::shadow_picture shows
-  GLuint unshadowed_buffer = 0, particle_vao = 0, particle_quads = 0, particle_regions = 0;
+  GLuint unshadowed_buffer = 0, bake_regions = 0, particle_vao = 0, particle_quads = 0, particle_regions = 0;
   GLuint shadow_layers[2] = {};
-  std::vector<GLuint> region_blocks;
   std::map<int, GLuint> shadowed_buffers;  // by light
   std::map<int, GLint> shadow_layer_of;    // by light
   std::size_t particle_vertices = 0;
@@ -243,9 +242,8 @@ void renderer::impl::make_particles() {
   const volume_atlas& atlas = smoke.atlas;
   const glm::ivec3 atlas_size = glm::max(atlas.size, glm::ivec3(1));  // a forced effect with no system
   if (smoke.baking) {
-    for (std::size_t k = 0; k < atlas.regions.size(); ++k)
-      region_blocks.push_back(make_buffer(std::vector<volume_bake_block>{bake_block(atlas, k, smoke.ranges[k])}, "volume region " + std::to_string(k)));
-    buffers.insert(buffers.end(), region_blocks.begin(), region_blocks.end());
+    bake_regions = make_buffer(bake_blocks(atlas, smoke.ranges), "volume regions");
+    buffers.push_back(bake_regions);
     unshadowed_buffer = make_buffer(smoke.unshadowed_lights, "volume lights");
     buffers.push_back(unshadowed_buffer);
     for (const volume_light& l : smoke.shadowed_lights) {
@@ -367,17 +365,15 @@ void renderer::impl::bind_layers() const {
   bind_shadow_map();
 }
 
-// One bake dispatch a region, with the lights in `lights_buffer`, reading the shadow map.
+// One bake dispatch over every region, with the lights in `lights_buffer`, reading the shadow map.
 void renderer::impl::bake(GLuint prog, GLuint lights_buffer) const {
   bind_shadow_map();
   glUseProgram(prog);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::volume_lights), lights_buffer);
   glBindImageTexture(binding(slot::volume_image), out.volume_atlas, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA8);
-  for (std::size_t k = 0; k < smoke.atlas.regions.size(); ++k) {
-    const glm::ivec4 d = smoke.atlas.regions[k].dims;
-    glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::volume_region), region_blocks[k]);
-    glDispatchCompute(GLuint(d.x + 3) / 4, GLuint(d.y + 3) / 4, GLuint(d.z + 3) / 4);
-  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::volume_regions), bake_regions);
+  const glm::ivec3 groups = bake_groups(smoke.atlas);
+  glDispatchCompute(GLuint(groups.x), GLuint(groups.y), GLuint(groups.z));
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

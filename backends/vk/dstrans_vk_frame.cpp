@@ -146,9 +146,9 @@ struct renderer::impl {
   std::vector<program> post;
 
   std::vector<buffer> owned;  // every buffer made once
-  buffer light_index, sphere_vertices, sphere_indices, cone_vertices, cone_indices, materials, lights, regions, unshadowed;
+  buffer light_index, sphere_vertices, sphere_indices, cone_vertices, cone_indices, materials, lights, regions, unshadowed, bake_regions;
   std::size_t sphere_count = 0, cone_count = 0;
-  std::vector<buffer> region_blocks, post_blocks, camera_blocks, quads;  // the last two: one a frame in flight
+  std::vector<buffer> post_blocks, camera_blocks, quads;  // the last two: one a frame in flight
   std::vector<std::size_t> quad_counts;
   std::map<int, buffer> shadowed_lights, light_blocks_by_light;  // by light
   std::map<int, std::uint32_t> shadow_layer_of;                  // by light
@@ -160,7 +160,7 @@ struct renderer::impl {
   frame_targets out;
   vk::targets tail, lit_colour_only;  // the last: a view of the forward target's colour and depth (owns nothing)
   VkDescriptorPool pool = VK_NULL_HANDLE;
-  std::vector<std::vector<std::vector<VkDescriptorSet>>> sets;  // [frame in flight][pass]: a set, or a bake's one a region
+  std::vector<std::vector<VkDescriptorSet>> sets;  // [frame in flight][pass]
 
   VkQueryPool queries = VK_NULL_HANDLE;
   std::uint32_t queries_per_frame = 0;
@@ -210,7 +210,7 @@ struct renderer::impl {
   void barrier(VkCommandBuffer cmd, const scheduled_pass& pass, const std::vector<image_use>& images);
   void settle(VkCommandBuffer cmd, access from, access to, const std::vector<image_use>& images);
   void rest(VkCommandBuffer cmd);
-  void run(VkCommandBuffer cmd, const scheduled_pass& pass, const std::vector<VkDescriptorSet>& set, int slot, const draw_geometry& draw);
+  void run(VkCommandBuffer cmd, const scheduled_pass& pass, VkDescriptorSet set, int slot, const draw_geometry& draw);
   void copy_shadow_picture(VkCommandBuffer cmd);
 };
 
@@ -409,10 +409,7 @@ result<bool> renderer::impl::make_particles() {
   std::vector<std::pair<buffer*, result<buffer>>> made;
   made.emplace_back(&unshadowed, filled(dev, smoke.unshadowed_lights, storage_use, "volume lights"));
   made.emplace_back(&regions, filled(dev, particle_regions(description, smoke), storage_use, "particle regions"));
-  region_blocks.resize(a.regions.size());
-  for (std::size_t k = 0; k < a.regions.size(); ++k)
-    made.emplace_back(&region_blocks[k], filled(dev, std::vector<volume_bake_block>{bake_block(a, k, smoke.ranges[k])}, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                                "volume region " + std::to_string(k)));
+  made.emplace_back(&bake_regions, filled(dev, bake_blocks(a, smoke.ranges), storage_use, "volume regions"));
   for (const volume_light& l : smoke.shadowed_lights) {
     const int i = int(l.cos_inner.y);
     made.emplace_back(&shadowed_lights[i], filled(dev, std::vector<volume_light>{l}, storage_use, "volume light " + std::to_string(i)));
@@ -572,6 +569,7 @@ bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const
   if (smoke.on) {
     b.buffers[binding(slot::particle_regions)] = regions.handle;
     b.buffers[binding(slot::volume_lights)] = pass.step == pass_step::bake_light ? shadowed_lights.at(pass.light).handle : unshadowed.handle;
+    b.buffers[binding(slot::volume_regions)] = bake_regions.handle;
     if (out.volume_atlas.view) {
       b.images[binding(slot::volume_image)] = &out.volume_atlas;
       b.images[binding(slot::volume_atlas)] = &out.volume_atlas;
@@ -648,11 +646,11 @@ result<VkDescriptorSet> renderer::impl::make_set(const program& p, const binding
   return set;
 }
 
-// Every pass's sets, a frame in flight each: one a pass, a bake's one a region (its block differs).
+// Every pass's set, a frame in flight each.
 result<bool> renderer::impl::make_sets() {
   std::uint32_t count = 0;
   for (const scheduled_pass& pass : schedule.passes)
-    count += pass.kind == pass_kind::dispatch ? std::uint32_t(smoke.atlas.regions.size()) : pass.kind == pass_kind::transfer ? 0u : 1u;
+    count += pass.kind == pass_kind::transfer ? 0u : 1u;
   count = std::max(count, 1u) * std::uint32_t(slots);
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 4 * count},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * count},
@@ -663,7 +661,7 @@ result<bool> renderer::impl::make_sets() {
   pci.poolSizeCount = 4;
   pci.pPoolSizes = sizes;
   if (vkCreateDescriptorPool(dev.ctx().device, &pci, dev.ctx().allocator, &pool) != VK_SUCCESS) return failure{"no descriptor pool"};
-  sets.assign(std::size_t(slots), std::vector<std::vector<VkDescriptorSet>>(schedule.passes.size()));
+  sets.assign(std::size_t(slots), std::vector<VkDescriptorSet>(schedule.passes.size(), VK_NULL_HANDLE));
   uses.assign(schedule.passes.size(), {});
   clears.clear();
   for (const std::string& name : schedule.cleared) {
@@ -685,14 +683,9 @@ result<bool> renderer::impl::make_sets() {
     for (std::size_t k = 0; k < schedule.passes.size(); ++k) {
       const scheduled_pass& pass = schedule.passes[k];
       if (pass.kind == pass_kind::transfer) continue;
-      bindings b = bindings_of(pass, slot);
-      const std::size_t n = pass.kind == pass_kind::dispatch ? smoke.atlas.regions.size() : 1;
-      for (std::size_t r = 0; r < n; ++r) {
-        if (pass.kind == pass_kind::dispatch) b.buffers[binding(slot::volume_region)] = region_blocks[r].handle;
-        auto set = make_set(program_of(pass), b, reading(pass), uses[k]);
-        if (!set) return failure{pass.label + ": " + set.error()};
-        sets[std::size_t(slot)][k].push_back(*set);
-      }
+      auto set = make_set(program_of(pass), bindings_of(pass, slot), reading(pass), uses[k]);
+      if (!set) return failure{pass.label + ": " + set.error()};
+      sets[std::size_t(slot)][k] = *set;
     }
   return true;
 }
@@ -825,7 +818,7 @@ void renderer::impl::copy_shadow_picture(VkCommandBuffer cmd) {
 }
 
 // One pass of the schedule into `cmd`: its targets and clears, its pipeline and sets, its draws.
-void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, const std::vector<VkDescriptorSet>& set, int slot,
+void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, VkDescriptorSet set, int slot,
                          const draw_geometry& draw) {
   const program& p = program_of(pass);
   const VkDeviceSize zero = 0;
@@ -845,7 +838,7 @@ void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, const 
   if (into) {
     dev.begin_rendering(cmd, *into, pass.clears, true);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.handle);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.layout, 0, 1, &set[0], 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.layout, 0, 1, &set, 0, nullptr);
   }
   switch (pass.step) {
     case pass_step::ambient:
@@ -883,13 +876,13 @@ void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, const 
       break;
     case pass_step::bake:
     case pass_step::bake_light:
+    {
+      const glm::ivec3 groups = bake_groups(smoke.atlas);
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipe.handle);
-      for (std::size_t k = 0; k < smoke.atlas.regions.size(); ++k) {
-        const glm::ivec4 d = smoke.atlas.regions[k].dims;
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipe.layout, 0, 1, &set[k], 0, nullptr);
-        vkCmdDispatch(cmd, std::uint32_t(d.x + 3) / 4, std::uint32_t(d.y + 3) / 4, std::uint32_t(d.z + 3) / 4);
-      }
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipe.layout, 0, 1, &set, 0, nullptr);
+      vkCmdDispatch(cmd, std::uint32_t(groups.x), std::uint32_t(groups.y), std::uint32_t(groups.z));
       break;
+    }
     case pass_step::shadow_layer:
       for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) {
         VkImageCopy copy{};

@@ -9,8 +9,8 @@
 //   float range = dstrans::volume_range(grids[0], lights);          // what a value of region 0 can reach
 //   dstrans::glsl::source cs;
 //   dstrans::glsl::add_light_volume_bake(cs, m);   // one invocation per cell, 4x4x4 groups
-//   // clear the atlas (an RGBA8 3D image) to 0; per region: dispatch ceil(dims / 4) groups, lights at
-//   // binding 0, the atlas as a storage image at 1, bake_block(atlas, r, range) at 2
+//   // clear the atlas (an RGBA8 3D image) to 0; per list of lights: dispatch bake_groups(atlas), lights at
+//   // binding 0, the atlas as a storage image at 1, bake_blocks(atlas, ranges) at 2
 //   std::vector<glm::vec4> texels = dstrans::bake_light_volume(atlas, m, lights);   // the CPU's, unscaled
 //   dstrans::glsl::add_light_volume_fetch(vs, m);  // dst_volume_texels(atlas, slab, p, region..., t): a cell's texels
 //   dstrans::glsl::add_light_volume_read(fs, m);   // dst_volume_light(t, n, range): their light for normal n
@@ -175,8 +175,9 @@ inline std::size_t atlas_texel(const volume_atlas& a, std::size_t r, glm::ivec3 
   return (std::size_t(t.z) * std::size_t(a.size.y) + std::size_t(t.y)) * std::size_t(a.size.x) + std::size_t(t.x);
 }
 
-// What the bake of region `r` reads at its uniform binding (std140): the region's grid, its first texel
-// with the slab height in w, the atlas's size, the region's range and its inverse (0 for a range of 0).
+// What the bake reads of region `r` (std430, one a region at its regions binding): the region's grid, its
+// first texel with the slab height in w, the atlas's size, the region's range and its inverse (0 for a
+// range of 0).
 struct volume_bake_block {
   volume_grid grid;
   glm::ivec4 offset_slab{0};
@@ -187,6 +188,15 @@ inline volume_bake_block bake_block(const volume_atlas& a, std::size_t r, float 
   const float inverse = range > 0.0f && std::isfinite(range) ? 1.0f / range : 0.0f;
   return {a.regions[r], glm::ivec4(a.offsets[r], a.slab), glm::ivec4(a.size, 0), glm::vec4(range, inverse, 0.0f, 0.0f)};
 }
+// Every region's block, region r with ranges[r].
+inline std::vector<volume_bake_block> bake_blocks(const volume_atlas& a, const std::vector<float>& ranges) {
+  std::vector<volume_bake_block> out;
+  for (std::size_t r = 0; r < a.regions.size(); ++r) out.push_back(bake_block(a, r, r < ranges.size() ? ranges[r] : 0.0f));
+  return out;
+}
+// The work groups of one bake dispatch: every texel of the atlas's first slab (all regions at once), four
+// a side (add_light_volume_bake's group size); none for an empty atlas.
+inline glm::ivec3 bake_groups(const volume_atlas& a) { return (glm::ivec3(a.size.x, a.slab, a.size.z) + 3) / 4; }
 
 // The light at one cell's centre, added into `values` (model m's values(), in order).
 inline void add_cell_light(const volume_grid& g, const volume_model& m, const std::vector<volume_light>& lights, glm::ivec3 id,
@@ -265,8 +275,10 @@ inline std::string texels_define(const volume_model& m) {
 }  // namespace detail
 
 // The bake as a compute shader for model `m`: lights at storage binding `first_binding`, the atlas (an
-// rgba8 image3D, added to) at the next, the region's volume_bake_block at the one after. With `shadow_hook`
-// non-empty, that GLSL is placed before main() and must define
+// rgba8 image3D, added to) at the next, every region's volume_bake_block (bake_blocks) at the one after;
+// one dispatch of bake_groups(atlas) bakes every region, an invocation a texel of the first slab, each
+// finding its region by its X (regions lie side by side along X). With `shadow_hook` non-empty, that GLSL
+// is placed before main() and must define
 //   vec3 dst_volume_shadow(dst_volume_light l, vec3 p, vec3 light)
 // which the bake calls on each light's colour at each cell: the light that reaches p past the light's
 // shadow map (a shadowed spot light's dispatch; the engine knows its map), at most `light`.
@@ -280,9 +292,10 @@ inline void add_light_volume_bake(source& src, const volume_model& m, int first_
           "struct dst_volume_light { vec4 position_kind; vec4 direction_range; vec4 colour_cos_outer; vec4 cos_inner; };\n"
           "layout(std430, binding = " + l + ") readonly buffer dst_volume_lights { dst_volume_light volume_lights[]; };\n"
           "layout(rgba8, binding = " + c + ") uniform image3D dst_volume_atlas;\n"
-          "layout(std140, binding = " + gb + ") uniform dst_volume_region {\n"
+          "struct dst_volume_region {\n"
           "  vec4 origin; vec4 scale; ivec4 dims; ivec4 offset_slab; ivec4 atlas_size; vec4 range;\n"
-          "} region;\n"
+          "};\n"
+          "layout(std430, binding = " + gb + ") readonly buffer dst_volume_regions { dst_volume_region regions[]; };\n"
           "const int dst_texels = " + std::to_string(m.texels()) + ";\n" + (moments ? "" : detail::basis_constants(m.axes)),
           __FILE__, __LINE__);
   if (!shadow_hook.empty()) src.add(shadow_hook, "shadow hook", 1);
@@ -297,8 +310,15 @@ inline void add_light_volume_bake(source& src, const volume_model& m, int first_
                 "      for (int c = 0; c < 3; ++c) values[3 * a + c] += colour[c] * w;\n"
                 "    }\n";
   src.add(std::string("void main() {\n"
-          "  ivec3 id = ivec3(gl_GlobalInvocationID);\n"
-          "  if (any(greaterThanEqual(id, region.dims.xyz))) return;\n"
+          "  ivec3 texel = ivec3(gl_GlobalInvocationID);\n"
+          // A plain loop: Mesa's GL compiled a search written as while (r < n && x >= end of r) so that the
+          // bake stored nothing.
+          "  int r = 0;  // the last region that starts at or before this X (regions lie in order along X)\n"
+          "  for (int i = 1; i < regions.length(); ++i)\n"
+          "    if (texel.x >= regions[i].offset_slab.x) r = i;\n"
+          "  dst_volume_region region = regions[r];\n"
+          "  ivec3 id = texel - region.offset_slab.xyz;\n"
+          "  if (any(lessThan(id, ivec3(0))) || any(greaterThanEqual(id, region.dims.xyz))) return;\n"
           "  vec3 p = region.origin.xyz + (vec3(id) + 0.5f) * region.scale.xyz;\n"
           "  float values[4 * dst_texels];\n"
           "  for (int i = 0; i < 4 * dst_texels; ++i) values[i] = 0.0f;\n"

@@ -365,8 +365,8 @@ inline result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode s
            "}\n";
   }
   static_assert(binding(slot::volume_image) == binding(slot::volume_lights) + 1 &&
-                    binding(slot::volume_region) == binding(slot::volume_lights) + 2,
-                "the bake takes its lights, atlas and region at three consecutive bindings");
+                    binding(slot::volume_regions) == binding(slot::volume_lights) + 2,
+                "the bake takes its lights, atlas and regions at three consecutive bindings");
   glsl::add_light_volume_bake(src, particle_model(o), binding(slot::volume_lights), hook);
   return src;
 }

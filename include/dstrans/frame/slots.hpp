@@ -30,9 +30,9 @@ enum class slot {
   lights,            // the lights
   kbuffer_nodes,     // the k-buffer's node pool
   kbuffer_heads,     // the k-buffer's list heads
-  volume_lights,     // the light-volume bake: its lights, the atlas as a storage image, the region it bakes
+  volume_lights,     // the light-volume bake: its lights, the atlas as a storage image, the regions it bakes
   volume_image,
-  volume_region,
+  volume_regions,
   particle_regions,  // the particle pass: each system's atlas region, the atlas, the shadow maps' layers
   volume_atlas,
   shadow_layers,
@@ -68,7 +68,7 @@ inline constexpr slot_desc slot_table[] = {
     {slot::kbuffer_heads, "KBUFFER_HEADS", 24, 1, slot_kind::image},
     {slot::volume_lights, "VOLUME_LIGHTS", 25, 1, slot_kind::storage_block},
     {slot::volume_image, "VOLUME_IMAGE", 26, 1, slot_kind::image},
-    {slot::volume_region, "VOLUME_REGION", 27, 1, slot_kind::uniform_block},
+    {slot::volume_regions, "VOLUME_REGIONS", 27, 1, slot_kind::storage_block},
     {slot::particle_regions, "PARTICLE_REGIONS", 28, 1, slot_kind::storage_block},
     {slot::volume_atlas, "VOLUME_ATLAS", 29, 1, slot_kind::texture},
     {slot::shadow_layers, "SHADOW_LAYERS", 30, 2, slot_kind::texture},
