@@ -343,9 +343,9 @@ inline void add_light_volume_bake(source& src, const volume_model& m, int first_
 //   void dst_volume_texels(sampler3D atlas, float slab, vec3 p, vec3 origin, vec3 scale, vec3 offset, vec3 dims,
 //                          out vec4 t[DST_VOLUME_TEXELS])
 // each texel of the cell at world point p of the region (origin, scale, first texel, dims), trilinearly
-// filtered. Texels are linear in the light, so filtering them filters the light's projection, and texels
-// fetched at a particle's corners and interpolated over it are texels too: the reference pipeline fetches
-// them per vertex, which takes every texture fetch out of the particles' fragments.
+// filtered (texels are linear in the light, so filtering them filters the light's projection). Fetch per
+// pixel as S2 did, or once a particle: the reference pipeline fetches at the particle's centre in the
+// vertex shader and passes the texels flat, which takes every texture fetch out of its fragments.
 inline void add_light_volume_fetch(source& src, const volume_model& m) {
   src.add_shared(text::dst_volume_texcoord);
   src.add(detail::texels_define(m) +
