@@ -1,6 +1,7 @@
 // The GLSL source builder: shared-code formatting, de-duplication, origins and error mapping.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <fstream>
 
 #include <dstrans/gbuffer.hpp>
@@ -58,7 +59,7 @@ TEST_CASE("a source maps every line to its origin and holds each shared block on
 }
 
 TEST_CASE("a pass shader file is added with its own line numbers", "[glsl]") {
-  const std::string path = "glsl_test_pass.frag.glsl";
+  const std::string path = (std::filesystem::temp_directory_path() / "dstrans_glsl_test_pass.frag.glsl").string();
   std::ofstream(path) << "// a pass\nvoid main() {\n}\n";
   glsl::source src;
   REQUIRE(src.add_file(path));
@@ -68,6 +69,7 @@ TEST_CASE("a pass shader file is added with its own line numbers", "[glsl]") {
   const auto missing = src.add_file("no/such/file.glsl");
   REQUIRE_FALSE(missing);
   CHECK(missing.error() == "cannot read GLSL file no/such/file.glsl");
+  std::filesystem::remove(path);
 }
 
 TEST_CASE("compiler logs are mapped to file:line of the original text", "[glsl]") {

@@ -1,3 +1,0 @@
-// a pass
-void main() {
-}
