@@ -40,6 +40,14 @@ def ratio(a, b):
     return "n/a" if a is None or b is None or b == 0 else "%.2fx" % (a / b)
 
 
+# SSIM and FLIP over all pixels and over the pixels a comparison is about: the table columns and a record's cells.
+SSIM_FLIP_HEAD = "SSIM | SSIM on glass | FLIP | FLIP on glass"
+
+
+def ssim_flip(r):
+    return "%.4f | %.4f | %.4f | %.4f" % (r["ssim"], r["ssim_transparent"], r["flip"], r["flip_transparent"])
+
+
 def main():
     results_path, out = sys.argv[1], sys.argv[2]
     everything = json.load(open(results_path))
@@ -62,7 +70,9 @@ def main():
     w("Backend %s on %s (%s), %s pixels, glass_room (58,792 triangles), the median of %d frames per run; times are GPU "
       "milliseconds per frame from timestamp queries. The reference for every error figure is deferred depth "
       "peeling at the same settings; RMSE is over 0-255 channel values, on all pixels and on pixels the "
-      "reference's first layer covers with glass." % (first["backend"], first["device"], first["driver"], size,
+      "reference's first layer covers with glass; SSIM (Wang et al. 2004: 1 for equal images) and LDR-FLIP "
+      "(Andersson et al. 2020: 0 for equal images, towards 1 as a difference grows visible, for an observer "
+      "seeing 67 pixels a degree) are the means of their maps over the same pixels." % (first["backend"], first["device"], first["driver"], size,
                                                      first["settings"]["frames"]))
     w("")
     w("A CPU rasteriser is not a GTX 760: llvmpipe shades in JIT-compiled SIMD code on %s cores, so "
@@ -206,14 +216,14 @@ def main():
 
     w("## Accuracy against deferred depth peeling")
     w("")
-    w("| technique | lights | shadows | refraction | ms | RMSE | RMSE on glass | PSNR (dB) |")
-    w("|---|---|---|---|---|---|---|---|")
+    w("| technique | lights | shadows | refraction | ms | RMSE | RMSE on glass | PSNR (dB) | %s |" % SSIM_FLIP_HEAD)
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in results:
         if r["scene"] == "glass_room" and r["technique"] != "peeling":
             s = r["settings"]
-            w("| %s | %d | %s | %s | %.2f | %.2f | %.2f | %s |" % (
+            w("| %s | %d | %s | %s | %.2f | %.2f | %.2f | %s | %s |" % (
                 r["technique"], s["lights"], s["shadows"], "on" if s["refraction"] else "off", r["frame_ms"], r["rmse"],
-                r["rmse_transparent"], "%.1f" % r["psnr"] if r["psnr"] is not None else "identical"))
+                r["rmse_transparent"], "%.1f" % r["psnr"] if r["psnr"] is not None else "identical", ssim_flip(r)))
     w("")
     w("## Figure 4.7: refraction errors without depth")
     w("")
@@ -298,18 +308,19 @@ def write_layers(w, layers):
       "S1 measured at k = 8: RMSE %.0f (deferred), %.0f (tailless), %.0f (all cheap), %s faster than forward."
       % (len(zooms), S1["deferred"], S1["tailless"], S1["cheap"], S1["speedup"]))
     w("")
-    w("| backend | zoom | hair pixels | mean layers | variant | k | ms | speed-up | RMSE on hair | bytes/px |")
-    w("|---|---|---|---|---|---|---|---|---|---|")
+    w("| backend | zoom | hair pixels | mean layers | variant | k | ms | speed-up | RMSE on hair | bytes/px | %s |"
+      % SSIM_FLIP_HEAD.replace("glass", "hair"))
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 
     def reference(r):
         return next(x for x in layers if x["backend"] == r["backend"] and x["settings"]["zoom"] == r["settings"]["zoom"]
                     and x["technique"] == "layers-forward")
     for r in layers:
         s = r["settings"]
-        w("| %s | %.2f | %d | %.1f | %s | %s | %.2f | %.2fx | %.2f | %d |" % (
+        w("| %s | %.2f | %d | %.1f | %s | %s | %.2f | %.2fx | %.2f | %d | %s |" % (
             r["backend"], s["zoom"], s["hair_pixels"], s["mean_layers"], r["technique"][len("layers-"):],
             "-" if s["k"] is None else s["k"], r["layers_ms"], reference(r)["layers_ms"] / r["layers_ms"],
-            r["rmse_transparent"], r["bytes_per_pixel"]))
+            r["rmse_transparent"], r["bytes_per_pixel"], ssim_flip(r)))
     w("")
     for backend in sorted({r["backend"] for r in layers}):
         at8 = [r for r in layers if r["backend"] == backend and r["settings"].get("k") == 8 and r["technique"] == "layers-deferred"]
@@ -377,8 +388,9 @@ def write_volumes(w, volumes):
       % (first["systems"], first["particles"], first["lights"], first["smoke_pixels"], S2["forward"],
          S2["volumes"], S2["bake"], S2["render"], S2["forward"] / S2["volumes"]))
     w("")
-    w("| backend | lighting | cells | B/cell | bake ms | particles ms | added ms | speed-up | RMSE | RMSE on smoke |")
-    w("|---|---|---|---|---|---|---|---|---|---|")
+    w("| backend | lighting | cells | B/cell | bake ms | particles ms | added ms | speed-up | RMSE | RMSE on smoke | %s |"
+      % SSIM_FLIP_HEAD.replace("glass", "smoke"))
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 
     def reference(r):
         return next(x for x in volumes if x["backend"] == r["backend"] and x["technique"] == "volumes-forward")
@@ -390,10 +402,10 @@ def write_volumes(w, volumes):
         return "-" if speed(r) is None else "%.2fx" % speed(r)
     for r in volumes:
         s = r["settings"]
-        w("| %s | %s | %s | %s | %.2f | %.2f | %.2f | %s | %.2f | %.2f |" % (
+        w("| %s | %s | %s | %s | %.2f | %.2f | %.2f | %s | %.2f | %.2f | %s |" % (
             r["backend"], r["technique"][len("volumes-"):], "-" if s["cells"] is None else s["cells"],
             "-" if s["bytes_per_cell"] is None else s["bytes_per_cell"], r["bake_ms"],
-            r["particles_ms"], r["lighting_ms"], speedup(r), r["rmse"], r["rmse_transparent"]))
+            r["particles_ms"], r["lighting_ms"], speedup(r), r["rmse"], r["rmse_transparent"], ssim_flip(r)))
     w("")
     for backend in sorted({r["backend"] for r in volumes}):
         rows = [r for r in volumes if r["backend"] == backend and r["technique"] != "volumes-forward"]
@@ -449,12 +461,13 @@ def write_post(w, post):
         if r["technique"].startswith("post-"):
             w("| %s | %s | %.2f |" % (r["backend"], r["technique"][len("post-"):], r["post_ms"]))
     w("")
-    w("| backend | frame | anti-aliasing ms | RMSE at glass edges | RMSE, all pixels |")
-    w("|---|---|---|---|---|")
+    w("| backend | frame | anti-aliasing ms | RMSE at glass edges | RMSE, all pixels | %s |"
+      % SSIM_FLIP_HEAD.replace("on glass", "at glass edges"))
+    w("|---|---|---|---|---|---|---|---|---|")
     for r in post:
         if r["technique"].startswith("aa-"):
-            w("| %s | %s | %.2f | %.2f | %.2f |" % (r["backend"], r["technique"][len("aa-"):], r["post_ms"],
-                                                   r["rmse_transparent"], r["rmse"]))
+            w("| %s | %s | %.2f | %.2f | %.2f | %s |" % (r["backend"], r["technique"][len("aa-"):], r["post_ms"],
+                                                        r["rmse_transparent"], r["rmse"], ssim_flip(r)))
     w("")
     for backend in sorted({r["backend"] for r in post}):
         by = {r["technique"]: r for r in post if r["backend"] == backend}
@@ -497,14 +510,15 @@ def write_sweep(w, sweep):
       "buffer: octahedral normals, depth from the depth attachment). Targets: RMSE on glass at most 3, at least "
       "1.6x faster than peeling, at most 12 bytes a pixel." % (first["lights"], first["width"], first["height"]))
     w("")
-    w("| backend | technique | predicate | reconstruction | layout | ms | vs peeling | bytes/px | RMSE | RMSE on glass | PSNR |")
-    w("|---|---|---|---|---|---|---|---|---|---|---|")
+    w("| backend | technique | predicate | reconstruction | layout | ms | vs peeling | bytes/px | RMSE | RMSE on glass | PSNR "
+      "| %s |" % SSIM_FLIP_HEAD)
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in sweep:
         s = r["settings"]
-        w("| %s | %s | %s | %s | %s | %.2f | %.2fx | %d | %.2f | %.2f | %s |" % (
+        w("| %s | %s | %s | %s | %s | %.2f | %.2fx | %d | %.2f | %.2f | %s | %s |" % (
             r["backend"], r["technique"].split("-")[0], s["predicate"] or "-", s["reconstruction"] or "-", s["layout"], r["frame_ms"],
             r["peeling_ms"] / r["frame_ms"], r["bytes_per_pixel"], r["rmse"], r["rmse_transparent"],
-            "-" if r["psnr"] is None else "%.1f" % r["psnr"]))
+            "-" if r["psnr"] is None else "%.1f" % r["psnr"], ssim_flip(r)))
     w("")
     for backend in sorted({r["backend"] for r in sweep}):
         rows = [r for r in sweep if r["backend"] == backend and r["technique"] != "peeling"]
@@ -664,15 +678,15 @@ def write_specular(w, rows):
       "reference is deferred depth peeling with RGB specular; the last column is the error of white specular alone, "
       "against RGB specular in the same layout." % (first["lights"], first["width"], first["height"]))
     w("")
-    w("| backend | specular | layout | ms | vs white | bytes/px | RMSE | RMSE on glass | RMSE against RGB |")
-    w("|---|---|---|---|---|---|---|---|---|")
+    w("| backend | specular | layout | ms | vs white | bytes/px | RMSE | RMSE on glass | RMSE against RGB | %s |" % SSIM_FLIP_HEAD)
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         s = r["settings"]
         white = next(x for x in rows if x["backend"] == r["backend"] and x["settings"]["layout"] == s["layout"]
                      and x["settings"]["specular"] == "white")
-        w("| %s | %s | %s | %.2f | %+.1f%% (spread %.2f ms) | %d | %.2f | %.2f | %.2f |" % (
+        w("| %s | %s | %s | %.2f | %+.1f%% (spread %.2f ms) | %d | %.2f | %.2f | %.2f | %s |" % (
             r["backend"], s["specular"], s["layout"], r["frame_ms"], 100.0 * (r["frame_ms"] / white["frame_ms"] - 1.0),
-            r["frame_ms_spread"], r["bytes_per_pixel"], r["rmse"], r["rmse_transparent"], r["rmse_against_rgb"]))
+            r["frame_ms_spread"], r["bytes_per_pixel"], r["rmse"], r["rmse_transparent"], r["rmse_against_rgb"], ssim_flip(r)))
     w("")
 
 

@@ -19,6 +19,7 @@
 
 #include "cli.hpp"
 #include "gpu.hpp"
+#include "image_error.hpp"
 #include "output_dir.hpp"
 #include "limit.hpp"
 #include "paired.hpp"
@@ -109,26 +110,20 @@ scene with_lights(const scene& s, int n) {
   return out;
 }
 
-struct error {
-  double rmse, rmse_transparent, psnr;
-};
-
-// RMSE (0-255 per channel) and PSNR of `a` against `ref`, over all pixels and over `mask`.
-error compare(const render::image& a, const render::image& ref, const std::vector<bool>& mask) {
-  double all = 0.0, masked = 0.0;
-  std::size_t n = 0, m = 0;
-  for (std::size_t i = 0; i < ref.rgba.size() / 4; ++i)
-    for (std::size_t c = 0; c < 3; ++c) {
-      const double d = double(a.rgba[4 * i + c]) - double(ref.rgba[4 * i + c]);
-      all += d * d;
-      ++n;
-      if (mask[i]) {
-        masked += d * d;
-        ++m;
-      }
-    }
-  const double rmse = std::sqrt(all / double(n));
-  return {rmse, m ? std::sqrt(masked / double(m)) : 0.0, rmse > 0.0 ? 20.0 * std::log10(255.0 / rmse) : INFINITY};
+// A record's error fields: RMSE, PSNR, SSIM and FLIP against its reference over all pixels, and RMSE, SSIM
+// and FLIP over the pixels the comparison is about (glass, hair, smoke: "_transparent").
+json error_fields(const render::image_error& e) {
+  return {{"rmse", e.all.rmse},
+          {"rmse_transparent", e.masked.rmse},
+          {"psnr", std::isfinite(e.all.psnr) ? json(e.all.psnr) : json(nullptr)},
+          {"ssim", e.all.ssim},
+          {"ssim_transparent", e.masked.ssim},
+          {"flip", e.all.flip},
+          {"flip_transparent", e.masked.flip}};
+}
+json with_errors(json record, const render::image_error& e) {
+  record.update(error_fields(e));
+  return record;
 }
 
 // The hair scene seen from `zoom` times closer to the camera's target (S1 measured four zoom levels).
@@ -156,29 +151,26 @@ result<json> layers_records(const scene& hair, const render::options& base, bool
     for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = reference->kbuffer_heads[i] != 0xffffffffu;
     const render::layer_counts counts = render::count_layers(*reference);
     auto record = [&](L variant, int k, const render::frame& f) {
-      const error e = compare(f.final_image, reference->final_image, mask);
+      const render::image_error e = render::compare(f.final_image, reference->final_image, mask);
       const bool lists = variant != L::wboit;
       // As nvpro's OIT table counts them: the lists' heads and nodes, and the two tail targets.
       const int bytes = (lists ? 4 + kbuffer_nodes_per_pixel * kbuffer_node_bytes : 0) + 8 + 2;
       const double ms = f.pass_ms.at("capture") + f.pass_ms.at("resolve");
-      records.push_back({{"technique", std::string("layers-") + render::layers_name(variant)},
-                         {"scene", "hair"},
-                         {"backend", backend},
-                         {"settings", {{"k", variant == L::deferred || variant == L::tailless ? json(k) : json(nullptr)},
-                                       {"zoom", zoom}, {"hair_pixels", counts.pixels}, {"mean_layers", counts.mean},
-                                       {"width", base.width}, {"height", base.height}, {"frames", f.frames},
-                                       {"overflow", f.kbuffer_overflow}}},
-                         {"frame_ms", f.frame_ms},
-                         {"frame_ms_spread", f.frame_ms_spread},
-                         {"pass_ms", f.pass_ms},
-                         {"layers_ms", ms},
-                         {"bytes_per_pixel", bytes},
-                         {"render_targets", nullptr},
-                         {"reference", "forward reference (every fragment sorted and shaded fully)"},
-                         {"rmse", e.rmse},
-                         {"rmse_transparent", e.rmse_transparent},
-                         {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)},
-                         {"leak_pixels", nullptr}});
+      records.push_back(with_errors({{"technique", std::string("layers-") + render::layers_name(variant)},
+                                     {"scene", "hair"},
+                                     {"backend", backend},
+                                     {"settings", {{"k", variant == L::deferred || variant == L::tailless ? json(k) : json(nullptr)},
+                                                   {"zoom", zoom}, {"hair_pixels", counts.pixels}, {"mean_layers", counts.mean},
+                                                   {"width", base.width}, {"height", base.height}, {"frames", f.frames},
+                                                   {"overflow", f.kbuffer_overflow}}},
+                                     {"frame_ms", f.frame_ms},
+                                     {"frame_ms_spread", f.frame_ms_spread},
+                                     {"pass_ms", f.pass_ms},
+                                     {"layers_ms", ms},
+                                     {"bytes_per_pixel", bytes},
+                                     {"render_targets", nullptr},
+                                     {"reference", "forward reference (every fragment sorted and shaded fully)"},
+                                     {"leak_pixels", nullptr}}, e));
     };
     record(L::forward, 64, *reference);
     for (L variant : {L::deferred, L::tailless})
@@ -226,30 +218,27 @@ result<json> volume_records(const scene& smoke, const render::options& base, boo
   std::size_t particles = 0;
   for (const particle_system& ps : smoke.particles) particles += std::size_t(ps.count);
   auto record = [&](P lighting, int cells, const render::frame& f) {
-    const error e = compare(f.final_image, reference->final_image, mask);
+    const render::image_error e = render::compare(f.final_image, reference->final_image, mask);
     const bool volumes = lighting != P::forward;
     const double bake = volumes ? f.pass_ms.at("bake") : 0.0, particle_ms = f.pass_ms.at("particles");
-    records.push_back({{"technique", std::string("volumes-") + render::particle_light_name(lighting)},
-                       {"scene", "smoke"},
-                       {"backend", backend},
-                       {"settings", {{"cells", volumes ? json(cells) : json(nullptr)},
-                                     {"bytes_per_cell", volumes ? json(render::particle_model(o).bytes_per_cell()) : json(nullptr)},
-                                     {"systems", smoke.particles.size()}, {"particles", particles},
-                                     {"lights", smoke.lights.size()}, {"smoke_pixels", smoke_pixels},
-                                     {"width", base.width}, {"height", base.height}, {"frames", f.frames}}},
-                       {"frame_ms", f.frame_ms},
-                       {"frame_ms_spread", f.frame_ms_spread},
-                       {"pass_ms", f.pass_ms},
-                       {"bake_ms", bake},
-                       {"particles_ms", particle_ms},
-                       {"lighting_ms", f.frame_ms - without->frame_ms},
-                       {"bytes_per_pixel", nullptr},
-                       {"render_targets", nullptr},
-                       {"reference", "forward reference (every particle fragment lit by every light)"},
-                       {"rmse", e.rmse},
-                       {"rmse_transparent", e.rmse_transparent},
-                       {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)},
-                       {"leak_pixels", nullptr}});
+    records.push_back(with_errors({{"technique", std::string("volumes-") + render::particle_light_name(lighting)},
+                                   {"scene", "smoke"},
+                                   {"backend", backend},
+                                   {"settings", {{"cells", volumes ? json(cells) : json(nullptr)},
+                                                 {"bytes_per_cell", volumes ? json(render::particle_model(o).bytes_per_cell()) : json(nullptr)},
+                                                 {"systems", smoke.particles.size()}, {"particles", particles},
+                                                 {"lights", smoke.lights.size()}, {"smoke_pixels", smoke_pixels},
+                                                 {"width", base.width}, {"height", base.height}, {"frames", f.frames}}},
+                                   {"frame_ms", f.frame_ms},
+                                   {"frame_ms_spread", f.frame_ms_spread},
+                                   {"pass_ms", f.pass_ms},
+                                   {"bake_ms", bake},
+                                   {"particles_ms", particle_ms},
+                                   {"lighting_ms", f.frame_ms - without->frame_ms},
+                                   {"bytes_per_pixel", nullptr},
+                                   {"render_targets", nullptr},
+                                   {"reference", "forward reference (every particle fragment lit by every light)"},
+                                   {"leak_pixels", nullptr}}, e));
   };
   record(P::forward, 0, *reference);
   const std::vector<int> sizes = quick ? std::vector<int>{8, 32} : std::vector<int>{8, 12, 16, 24, 32};
@@ -310,7 +299,9 @@ result<json> post_records(const scene& room, const render::options& base, const 
                        {"pass_ms", all->pass_ms},
                        {"post_ms", all->pass_ms.at("post " + name)},
                        {"rmse", nullptr},
-                       {"rmse_transparent", nullptr}});
+                       {"rmse_transparent", nullptr},
+                       {"ssim", nullptr},
+                       {"flip", nullptr}});
   }
   // The anti-aliased reference, and the glass edges: pixels whose 3x3 neighbourhood in the peeled first
   // layer holds both glass and no glass.
@@ -356,20 +347,17 @@ result<json> post_records(const scene& room, const render::options& base, const 
     o.method = v.method;
     auto f = draw(s, o);
     if (!f) return failure{f.error()};
-    const error e = compare(f->final_image, reference, edges);
-    records.push_back({{"technique", std::string("aa-") + v.name},
-                       {"scene", "glass_room_post"},
-                       {"backend", backend},
-                       {"settings", {{"width", o.width}, {"height", o.height}, {"frames", f->frames}, {"lights", s.lights.size()},
-                                     {"edge_pixels", edge_pixels}}},
-                       {"frame_ms", f->frame_ms},
-                       {"frame_ms_spread", f->frame_ms_spread},
-                       {"pass_ms", f->pass_ms},
-                       {"post_ms", v.chain.empty() ? 0.0 : f->pass_ms.at("post aa")},
-                       {"reference", "depth peeling at twice the size, 2x2 box-filtered"},
-                       {"rmse", e.rmse},
-                       {"rmse_transparent", e.rmse_transparent},
-                       {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)}});
+    const render::image_error e = render::compare(f->final_image, reference, edges);
+    records.push_back(with_errors({{"technique", std::string("aa-") + v.name},
+                                   {"scene", "glass_room_post"},
+                                   {"backend", backend},
+                                   {"settings", {{"width", o.width}, {"height", o.height}, {"frames", f->frames}, {"lights", s.lights.size()},
+                                                 {"edge_pixels", edge_pixels}}},
+                                   {"frame_ms", f->frame_ms},
+                                   {"frame_ms_spread", f->frame_ms_spread},
+                                   {"pass_ms", f->pass_ms},
+                                   {"post_ms", v.chain.empty() ? 0.0 : f->pass_ms.at("post aa")},
+                                   {"reference", "depth peeling at twice the size, 2x2 box-filtered"}}, e));
   }
   return records;
 }
@@ -387,24 +375,21 @@ result<json> reconstruct_records(const scene& room, const render::options& base,
   std::vector<bool> glass(peeled->gbuffer[0].size());
   for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, peeled->gbuffer[0][i]).w < 1.0f;
   auto record = [&](const std::string& technique, const render::options& with, const render::frame& f) {
-    const error e = compare(f.final_image, peeled->final_image, glass);
+    const render::image_error e = render::compare(f.final_image, peeled->final_image, glass);
     const bool peeling = with.method == render::technique::peeling;
     const pipeline_plan plan = render::plan_of(room, with).pipeline;
-    records.push_back({{"technique", technique},
-                       {"scene", "glass_room_reconstruct"},
-                       {"backend", backend},
-                       {"settings", {{"predicate", peeling ? json(nullptr) : json(render::predicate_name(with.interlace))},
-                                     {"reconstruction", peeling ? json(nullptr) : json(with.reconstruct ? "edge-aware" : "partner")},
-                                     {"layout", render::layout_name(with.layout)}, {"lights", room.lights.size()}, {"width", with.width},
-                                     {"height", with.height}, {"frames", f.frames}}},
-                       {"frame_ms", f.frame_ms},
-                       {"frame_ms_spread", f.frame_ms_spread},
-                       {"peeling_ms", peeled->frame_ms},
-                       {"bytes_per_pixel", peeling ? 2 * plan.bytes_per_pixel : plan.bytes_per_pixel},  // the plan counts one layer
-                       {"reference", "deferred depth peeling"},
-                       {"rmse", e.rmse},
-                       {"rmse_transparent", e.rmse_transparent},
-                       {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)}});
+    records.push_back(with_errors({{"technique", technique},
+                                   {"scene", "glass_room_reconstruct"},
+                                   {"backend", backend},
+                                   {"settings", {{"predicate", peeling ? json(nullptr) : json(render::predicate_name(with.interlace))},
+                                                 {"reconstruction", peeling ? json(nullptr) : json(with.reconstruct ? "edge-aware" : "partner")},
+                                                 {"layout", render::layout_name(with.layout)}, {"lights", room.lights.size()}, {"width", with.width},
+                                                 {"height", with.height}, {"frames", f.frames}}},
+                                   {"frame_ms", f.frame_ms},
+                                   {"frame_ms_spread", f.frame_ms_spread},
+                                   {"peeling_ms", peeled->frame_ms},
+                                   {"bytes_per_pixel", peeling ? 2 * plan.bytes_per_pixel : plan.bytes_per_pixel},  // the plan counts one layer
+                                   {"reference", "deferred depth peeling"}}, e));
   };
   record("peeling", o, *peeled);
   o.method = render::technique::interlaced;
@@ -452,22 +437,19 @@ result<json> specular_records(const scene& room, const render::options& base, co
       auto f = draw(coloured, o);
       if (!f) return failure{f.error()};
       if (rgb) with_rgb = *f;
-      const error e = compare(f->final_image, peeled->final_image, glass);
-      records.push_back({{"technique", std::string("interlaced-") + (rgb ? "rgb" : "white") + "-" + render::layout_name(l)},
-                         {"scene", "glass_room_specular"},
-                         {"backend", backend},
-                         {"settings", {{"specular", rgb ? "rgb" : "white"}, {"layout", render::layout_name(l)},
-                                       {"lights", coloured.lights.size()}, {"width", o.width}, {"height", o.height},
-                                       {"frames", f->frames}}},
-                         {"frame_ms", f->frame_ms},
-                         {"frame_ms_spread", f->frame_ms_spread},
-                         {"peeling_ms", peeled->frame_ms},
-                         {"bytes_per_pixel", render::plan_of(coloured, o).pipeline.bytes_per_pixel},
-                         {"reference", "deferred depth peeling with RGB specular"},
-                         {"rmse", e.rmse},
-                         {"rmse_transparent", e.rmse_transparent},
-                         {"rmse_against_rgb", compare(f->final_image, with_rgb->final_image, everywhere).rmse},
-                         {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)}});
+      const render::image_error e = render::compare(f->final_image, peeled->final_image, glass);
+      records.push_back(with_errors({{"technique", std::string("interlaced-") + (rgb ? "rgb" : "white") + "-" + render::layout_name(l)},
+                                     {"scene", "glass_room_specular"},
+                                     {"backend", backend},
+                                     {"settings", {{"specular", rgb ? "rgb" : "white"}, {"layout", render::layout_name(l)},
+                                                   {"lights", coloured.lights.size()}, {"width", o.width}, {"height", o.height},
+                                                   {"frames", f->frames}}},
+                                     {"frame_ms", f->frame_ms},
+                                     {"frame_ms_spread", f->frame_ms_spread},
+                                     {"peeling_ms", peeled->frame_ms},
+                                     {"bytes_per_pixel", render::plan_of(coloured, o).pipeline.bytes_per_pixel},
+                                     {"reference", "deferred depth peeling with RGB specular"},
+                                     {"rmse_against_rgb", render::compare(f->final_image, with_rgb->final_image, everywhere).all.rmse}}, e));
     }
   }
   return records;
@@ -822,7 +804,7 @@ int bench(std::vector<std::string> args) {
       }
       std::vector<bool> glass(ref.gbuffer[0].size());
       for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, ref.gbuffer[0][i]).w < 1.0f;
-      const error e = compare(f->final_image, ref.final_image, glass);
+      const render::image_error e = render::compare(f->final_image, ref.final_image, glass);
       const auto [targets, bytes] = targets_and_bytes(c.method);
       // The memory of the plan's targets at this size (the interlaced pipeline's plan; others by their tables).
       const pipeline_plan plan = render::plan_of(s, options_of(c.method)).pipeline;
@@ -838,30 +820,27 @@ int bench(std::vector<std::string> args) {
         std::fprintf(stderr, "dstrans bench: the copies on %s: %s\n", backend.c_str(), limit.error().c_str());
         return 1;
       }
-      json rec{{"technique", render::technique_name(c.method)},
-               {"scene", c.scene},
-               {"backend", backend},
-               {"settings", {{"lights", c.lights}, {"shadows", render::shadow_name(c.shadows)}, {"refraction", c.refraction},
-                             {"width", base.width}, {"height", base.height}, {"shadow_size", base.shadow_size},
-                             {"frames", f->frames},
-                             {"forced", c.force.names()}}},
-               {"effects", render::plan_of(s, options_of(c.method)).on.names()},
-               {"memory_bytes", c.method == T::interlaced ? json(memory) : json(nullptr)},
-               {"frame_ms", f->frame_ms},
-               {"frame_ms_spread", f->frame_ms_spread},
-               {"pass_ms", f->pass_ms},
-               {"pass_bytes", moved},
-               {"limit_ms", *limit},
-               {"bytes_per_pixel", bytes},
-               {"render_targets", targets},
-               {"reference", "deferred depth peeling"},
-               {"rmse", e.rmse},
-               {"rmse_transparent", e.rmse_transparent},
-               {"psnr", std::isfinite(e.psnr) ? json(e.psnr) : json(nullptr)},
-               {"leak_pixels", leak_pixels}};
+      json rec = with_errors({{"technique", render::technique_name(c.method)},
+                              {"scene", c.scene},
+                              {"backend", backend},
+                              {"settings", {{"lights", c.lights}, {"shadows", render::shadow_name(c.shadows)}, {"refraction", c.refraction},
+                                            {"width", base.width}, {"height", base.height}, {"shadow_size", base.shadow_size},
+                                            {"frames", f->frames},
+                                            {"forced", c.force.names()}}},
+                              {"effects", render::plan_of(s, options_of(c.method)).on.names()},
+                              {"memory_bytes", c.method == T::interlaced ? json(memory) : json(nullptr)},
+                              {"frame_ms", f->frame_ms},
+                              {"frame_ms_spread", f->frame_ms_spread},
+                              {"pass_ms", f->pass_ms},
+                              {"pass_bytes", moved},
+                              {"limit_ms", *limit},
+                              {"bytes_per_pixel", bytes},
+                              {"render_targets", targets},
+                              {"reference", "deferred depth peeling"},
+                              {"leak_pixels", leak_pixels}}, e);
       results.push_back(rec);
       std::fprintf(stderr, "%s[%zu/%zu] %s: %.2f ms, RMSE %.2f%s", tty ? "\r\033[K" : "", k + 1, configs.size(), key(c).c_str(),
-                   f->frame_ms, e.rmse, tty ? "" : "\n");
+                   f->frame_ms, e.all.rmse, tty ? "" : "\n");
     }
     if (tty) std::fputc('\n', stderr);
     auto clock = [&](const scene& s, const render::options& o) -> result<frame_clock> {
