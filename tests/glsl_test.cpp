@@ -35,7 +35,7 @@ TEST_CASE("shared code is GLSL once the keywords are spelled out", "[glsl]") {
 TEST_CASE("a shared block records where it was written", "[glsl]") {
   CHECK(std::string(text::dst_test_block.name) == "dst_test_block");
   CHECK(std::string(text::dst_test_block.file).find("glsl_test.cpp") != std::string::npos);
-  CHECK(text::dst_test_block.line == 11);
+  CHECK(text::dst_test_block.line == 12);
 }
 
 TEST_CASE("a source maps every line to its origin and holds each shared block once", "[glsl]") {
