@@ -116,6 +116,15 @@ TEST_CASE("the full-screen triangle covers clip space", "[fullscreen]") {
   CHECK(shader::dst_pixel_ndc({0, 0}, {4, 2}) == glm::vec2(-0.75f, 0.5f));  // top left
   CHECK(shader::dst_pixel_ndc({3, 1}, {4, 2}) == glm::vec2(0.75f, -0.5f));  // bottom right
   CHECK(shader::dst_pixel_ndc({0, 0}, {0, 0}) == glm::vec2(0.0f, 0.0f));    // a size below 1 counts as 1
+  // Back to the window: every pixel's centre, and the image's corners.
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) {
+      const glm::vec2 w = shader::dst_ndc_window(shader::dst_pixel_ndc({x, y}, {5, 3}), {5, 3});
+      CHECK(w.x == Approx(x + 0.5f).epsilon(1e-6));
+      CHECK(w.y == Approx(y + 0.5f).epsilon(1e-6));
+    }
+  CHECK(shader::dst_ndc_window({-1.0f, 1.0f}, {5, 3}) == glm::vec2(0.0f, 0.0f));
+  CHECK(shader::dst_ndc_window({1.0f, -1.0f}, {5, 3}) == glm::vec2(5.0f, 3.0f));
   for (spirv::api a : {spirv::api::opengl, spirv::api::vulkan}) {
     glsl::source vs = glsl::fullscreen_vertex_shader();
     if (a == spirv::api::vulkan) CHECK(vs.str().find("gl_VertexIndex") != std::string::npos);

@@ -318,6 +318,7 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_flip_rows, dst_flip_rows),
       DSTRANS_FORMULA(dst_fullscreen, dst_fullscreen_position).yields(-1.0f, 3.0f),
       DSTRANS_FORMULA(dst_pixel_ndc, dst_pixel_ndc),
+      DSTRANS_FORMULA(dst_ndc_window, dst_ndc_window),
       DSTRANS_FORMULA(dst_phong, dst_phong)
           .within({"n", "l", "v"}, unit_vector())
           .within("spec_power", {0.0f, 255.0f})

@@ -4,6 +4,7 @@
 //   dstrans::glsl::source vs = dstrans::glsl::fullscreen_vertex_shader();   // draw 3 vertices
 //   glm::vec2 clip = dstrans::shader::dst_fullscreen_position(2);           // (-1, 3)
 //   glm::vec2 ndc = dstrans::shader::dst_pixel_ndc({0, 0}, {4, 2});          // (-0.75, 0.5): top left
+//   glm::vec2 at = dstrans::shader::dst_ndc_window(ndc, {4, 2});            // (0.5, 0.5): its centre
 #pragma once
 
 #include "detail/shared.hpp"
@@ -22,6 +23,14 @@ DSTRANS_SHARED(dst_pixel_ndc,
 DST_FN vec2 dst_pixel_ndc(ivec2 pixel, ivec2 size) {
   vec2 extent = vec2(max(size, ivec2(1)));
   return vec2((float(pixel.x) + 0.5f) / extent.x * 2.0f - 1.0f, 1.0f - (float(pixel.y) + 0.5f) / extent.y * 2.0f);
+}
+)
+
+// The window position (pixels from the top left, continuous: pixel (x, y) spans [x, x + 1) x [y, y + 1)) of
+// normalized device coordinates `ndc` in an image of `size`: dst_pixel_ndc's inverse.
+DSTRANS_SHARED(dst_ndc_window,
+DST_FN vec2 dst_ndc_window(vec2 ndc, ivec2 size) {
+  return vec2(ndc.x * 0.5f + 0.5f, 0.5f - ndc.y * 0.5f) * vec2(size);
 }
 )
 

@@ -20,7 +20,7 @@ float dst_hair_visibility(vec3 world, dst_light_data l, float alpha, int radius)
   if (!(h.w > 0.0f)) return 1.0f;
   vec3 ndc = h.xyz / h.w;
   ivec2 size = frame.size.zw;
-  ivec2 texel = ivec2(floor(vec2(ndc.x * 0.5f + 0.5f, 0.5f - ndc.y * 0.5f) * vec2(size)));
+  ivec2 texel = ivec2(floor(dst_ndc_window(ndc.xy, size)));
   float near_plane = l.cos_inner.z, far_plane = l.cos_inner.w;
   float along = dot(world - l.position_range.xyz, l.direction_kind.xyz);
   float sum = 0.0f, weights = 0.0f;

@@ -10,7 +10,7 @@ vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
   if (!(h.w > 0.0f)) return light;
   vec3 ndc = h.xyz / h.w;
   ivec2 size = frame.size.zw;
-  ivec2 texel = ivec2(floor(vec2(ndc.x * 0.5f + 0.5f, 0.5f - ndc.y * 0.5f) * vec2(size)));
+  ivec2 texel = ivec2(floor(dst_ndc_window(ndc.xy, size)));
   if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, size))) return light;
   float near_plane = l.cos_inner.z, far_plane = l.cos_inner.w;
   float d_p = h.w / far_plane;
