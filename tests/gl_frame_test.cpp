@@ -184,3 +184,27 @@ TEST_CASE("GL renderer: no target or program for an effect the scene does not us
   CHECK(lit->targets().gbuffers.empty());
   CHECK(lit->targets().lit.framebuffer != 0);
 }
+
+TEST_CASE("GL renderer: temporal interlacing leaves nothing where a pane moved away", "[render][gl][temporal]") {
+  auto ctx = gl::headless_context::create();
+  if (!ctx) {
+    WARN("skipped GL: " << ctx.error());
+    return;
+  }
+  const frame_tests::moved_pane m = frame_tests::moved_pane_scenes();
+  render::options o = sized(160, 90);
+  o.temporal = true;
+  const gl::scene_geometry before(m.before), after(m.after), without(m.without);
+  // Every renderer describes the scene after the move, so that all draw the same shadows.
+  auto first = [&](const gl::scene_geometry& g) {
+    auto r = make(m.after, o);
+    r->render(m.after.view, [&](const scheduled_pass& pass) { g(pass); });
+    return shown(*r);
+  };
+  auto r = make(m.after, o);
+  r->render(m.after.view, [&](const scheduled_pass& pass) { before(pass); });
+  r->render(m.after.view, [&](const scheduled_pass& pass) { after(pass); });
+  frame_tests::check_nothing_left(shown(*r), first(after), first(before), first(without), 160, 90);
+  for (const auto& msg : (*ctx)->debug_messages()) UNSCOPED_INFO(msg);
+  CHECK((*ctx)->debug_messages().empty());
+}

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include <dstrans/frame/passes.hpp>
 #include <dstrans/frame/plan.hpp>
 #include <scene_json.hpp>
 
@@ -141,4 +142,81 @@ TEST_CASE("drawn_indices picks a pass's run of a flattened scene, and times_of s
   CHECK(t.pass_ms.at("shadow") == 5.0);
   CHECK(t.pass_ms.at("light") == 2.0);
   CHECK(t.frame_ms == 9.0);
+}
+
+TEST_CASE("temporal interlacing: planned for glass on the interlaced technique, the previous frame kept and counted",
+          "[schedule][temporal]") {
+  render::options o;
+  o.temporal = true;
+  const scene room = example("glass_room.json");
+  for (render::gbuffer_layout l : {render::gbuffer_layout::thesis, render::gbuffer_layout::compact}) {
+    o.layout = l;
+    const render::frame_plan p = render::plan_of(room, o);
+    CHECK(p.temporal);
+    CHECK(p.layers == 1);
+    CHECK(p.kept_layers() == 2);
+    // Table 3.1's 20 bytes or the compact 12, twice.
+    CHECK(p.pipeline.bytes_per_pixel == (l == render::gbuffer_layout::thesis ? 40 : 24));
+    CHECK(p.pipeline.target("previous.gbuffer.RT0"));
+    CHECK(p.pipeline.target("previous.light.RT0"));
+    CHECK(p.pipeline.pass("compose")->switches.back() == "DST_TEMPORAL");
+    const frame_schedule sched = render::schedule_of(room, p, o);
+    CHECK(count(sched, "gbuffer") == 1u);
+    CHECK(check_schedule(sched, {"scene", "previous gbuffer", "previous light buffer"}, {p.post.output}));
+    CHECK(!check_schedule(sched, {"scene"}, {p.post.output}));
+    render::options one = o;
+    one.temporal = false;
+    CHECK(render::frame_bytes(p, o) == render::frame_bytes(render::plan_of(room, one), one) +
+                                           std::size_t(p.pipeline.bytes_per_pixel / 2) * std::size_t(o.width) * std::size_t(o.height));
+  }
+  // Nothing to keep without glass, or where another technique draws the frame.
+  o.layout = render::gbuffer_layout::thesis;
+  const render::frame_plan none = render::plan_of(example("glass_room_0.json"), o);
+  CHECK(!none.temporal);
+  CHECK(none.kept_layers() == 1);
+  CHECK(none.pipeline.bytes_per_pixel == 20);
+  for (render::technique t : {render::technique::peeling, render::technique::forward, render::technique::forward_depth}) {
+    o.method = t;
+    CHECK(!render::plan_of(room, o).temporal);
+  }
+}
+
+TEST_CASE("temporal interlacing alternates every predicate's phase and hands each frame the one before", "[schedule][temporal]") {
+  const glm::ivec2 size(7, 5);
+  for (render::predicate p : {render::predicate::rows, render::predicate::columns, render::predicate::checker}) {
+    INFO(render::predicate_name(p));
+    CHECK(render::interlace_phase(p, 0) == glm::ivec2(0));
+    CHECK(render::interlace_phase(p, 2) == glm::ivec2(0));
+    CHECK(render::interlace_phase(p, 1) == render::interlace_phase(p, 3));
+    for (int y = 0; y < size.y; ++y)
+      for (int x = 0; x < size.x; ++x) {
+        const glm::ivec2 a = glm::ivec2(x, y) + render::interlace_phase(p, 0), b = glm::ivec2(x, y) + render::interlace_phase(p, 1);
+        const bool flips = p == render::predicate::rows      ? interlace::rows::keep(a, size) != interlace::rows::keep(b, size)
+                           : p == render::predicate::columns ? interlace::columns::keep(a, size) != interlace::columns::keep(b, size)
+                                                             : interlace::checker::keep(a, size) != interlace::checker::keep(b, size);
+        CHECK(flips);
+      }
+  }
+  const scene room = example("glass_room.json");
+  render::options o;
+  o.temporal = true;
+  const render::frame_plan p = render::plan_of(room, o);
+  const render::frame_block first = render::sequence_frame(render::camera_frame(room, o), {}, 0, p, o);
+  CHECK(first.interlace == glm::ivec4(0, 0, 0, 0));  // no previous frame
+  CHECK(first.prev_view_proj == first.view_proj);
+  CHECK(first.prev_inv_view_proj == first.inv_view_proj);
+  const render::frame_block still = render::sequence_frame(render::camera_frame(room, o), first, 1, p, o);
+  CHECK(still.interlace == glm::ivec4(0, 1, 1, 1));
+  camera moved = room.view;
+  moved.position.x += 0.1f;
+  const render::frame_block next = render::sequence_frame(render::camera_frame(moved, room.ambient, o), still, 2, p, o);
+  CHECK(next.interlace == glm::ivec4(0, 0, 1, 0));
+  CHECK(next.prev_view_proj == still.view_proj);
+  CHECK(next.prev_inv_view_proj == still.inv_view_proj);
+  CHECK(next.view_proj != still.view_proj);
+  // Without temporal interlacing a frame is the camera's as it is.
+  o.temporal = false;
+  const render::frame_block plain = render::sequence_frame(render::camera_frame(moved, room.ambient, o), still, 2, render::plan_of(room, o), o);
+  CHECK(plain.interlace == glm::ivec4(0));
+  CHECK(plain.prev_view_proj == plain.view_proj);
 }

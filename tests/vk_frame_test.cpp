@@ -206,3 +206,28 @@ TEST_CASE("VK renderer: the engine's own vertex layout draws the frame scene_geo
   for (const std::string& m : e.hd->validation_messages()) UNSCOPED_INFO(m);
   CHECK(e.hd->validation_messages().empty());
 }
+
+TEST_CASE("VK renderer: temporal interlacing leaves nothing where a pane moved away", "[render][vk][temporal]") {
+  engine e;
+  if (!e.open()) return;
+  const frame_tests::moved_pane m = frame_tests::moved_pane_scenes();
+  render::options o = sized(160, 90);
+  o.temporal = true;
+  auto before = vk::scene_geometry::create(*e.dev, m.before), after = vk::scene_geometry::create(*e.dev, m.after),
+       without = vk::scene_geometry::create(*e.dev, m.without);
+  REQUIRE((before && after && without));
+  // Every renderer describes the scene after the move, so that all draw the same shadows.
+  auto first = [&](const vk::scene_geometry& g) {
+    auto r = make(*e.dev, m.after, o);
+    e.frame(0, [&](VkCommandBuffer cmd) { r->record(cmd, m.after.view, [&](VkCommandBuffer c, const scheduled_pass& p) { g(c, p); }); });
+    e.idle();
+    return e.shown(*r);
+  };
+  auto r = make(*e.dev, m.after, o);
+  e.frame(0, [&](VkCommandBuffer cmd) { r->record(cmd, m.after.view, [&](VkCommandBuffer c, const scheduled_pass& p) { (**before)(c, p); }); });
+  e.frame(1, [&](VkCommandBuffer cmd) { r->record(cmd, m.after.view, [&](VkCommandBuffer c, const scheduled_pass& p) { (**after)(c, p); }); });
+  e.idle();
+  frame_tests::check_nothing_left(e.shown(*r), first(**after), first(**before), first(**without), 160, 90);
+  for (const std::string& msg : e.hd->validation_messages()) UNSCOPED_INFO(msg);
+  CHECK(e.hd->validation_messages().empty());
+}

@@ -31,6 +31,12 @@ image to_image(const std::vector<texel>& texels, format f, int width, int height
   return out;
 }
 
+std::vector<bool> glass_pixels(const frame& f) {
+  std::vector<bool> out(f.gbuffer.empty() ? 0 : f.gbuffer[0].size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = decode(format::rgba8, f.gbuffer[0][i]).w < 1.0f;
+  return out;
+}
+
 namespace {
 // The q-quantile (0 to 1) of `v`, interpolated between neighbours.
 double quantile(std::vector<double> v, double q) {

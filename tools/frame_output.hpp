@@ -48,6 +48,9 @@ struct frame {
   int frames = 0;
 };
 
+// The pixels whose (first) G-buffer holds glass: Table 3.1's alpha below 1.
+std::vector<bool> glass_pixels(const frame& f);
+
 // The k-buffer's lists: how many pixels hold fragments, their mean and largest count.
 struct layer_counts {
   std::size_t pixels = 0, max = 0;

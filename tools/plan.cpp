@@ -19,9 +19,10 @@ namespace {
 using json = nlohmann::ordered_json;
 
 const char* const usage =
-    "usage: dstrans plan <scene.json> [--json] [--budget MIB]\n"
+    "usage: dstrans plan <scene.json> [--json] [--budget MIB] [--temporal on|off]\n"
     "the effects the scene calls for (and why), and the passes, render targets and shader switches of the\n"
-    "interlaced deferred pipeline that runs exactly those effects, and a frame's passes in the order they run\n";
+    "interlaced deferred pipeline that runs exactly those effects, and a frame's passes in the order they run;\n"
+    "--temporal on: with temporal interlacing (the previous frame's targets, where the scene has glass)\n";
 
 std::string joined(const std::vector<std::string>& words) {
   std::string out;
@@ -39,6 +40,10 @@ int plan(std::vector<std::string> args) {
   try {
     const bool as_json = take_flag(args, "--json");
     const scene_budget budget = take_budget(args);
+    render::options o;
+    const std::string temporal = take_option(args, "--temporal", "off");
+    if (temporal != "on" && temporal != "off") throw usage_error{"--temporal must be on or off, not '" + temporal + "'"};
+    o.temporal = temporal == "on";
     const std::vector<std::string> files = operands(args);
     if (files.size() != 1) throw usage_error{"plan takes one scene file, not " + std::to_string(files.size()) + " arguments"};
     const auto s = load_scene(files[0], budget);
@@ -47,7 +52,6 @@ int plan(std::vector<std::string> args) {
       return 1;
     }
     const std::vector<feature> found = scene_features(*s);
-    const render::options o;
     const render::frame_plan frame = render::plan_of(*s, o);
     const pipeline_plan& p = frame.pipeline;
     const frame_schedule schedule = render::schedule_of(*s, frame, o);

@@ -39,6 +39,9 @@ const char* const usage =
     "                           place of the scene's own chain (deferred techniques)\n"
     "       [--interlace rows|columns|checker] [--reconstruct partner|edge-aware]   the interlaced G-buffer's\n"
     "                           predicate, and how the compose pass finds a pixel's other layer\n"
+    "       [--temporal on|off]   temporal interlacing: the rows that keep glass alternate every frame and the\n"
+    "                           compose pass takes a pixel's other layer from the previous frame where it is\n"
+    "                           still there (with --frames 2 or more; doubles the G-buffer's bytes)\n"
     "       [--layout thesis|compact]   the G-buffer: Table 3.1's 16 bytes, or 8 with depth from the attachment\n"
     "       [--budget MIB]   the memory a scene and its frame may take (default 1024), estimated before anything\n"
     "                           is built; a larger scene is refused with its estimate\n"
@@ -96,6 +99,9 @@ int render(std::vector<std::string> args) {
     const std::string reconstruct = take_option(args, "--reconstruct", "partner");
     if (reconstruct == "edge-aware") o.reconstruct = true;
     else if (reconstruct != "partner") throw usage_error{"--reconstruct must be partner or edge-aware, not '" + reconstruct + "'"};
+    const std::string temporal = take_option(args, "--temporal", "off");
+    if (temporal == "on") o.temporal = true;
+    else if (temporal != "off") throw usage_error{"--temporal must be on or off, not '" + temporal + "'"};
     o.volume_cells = to_int(take_option(args, "--volume-cells", "16"), 1, 64, "--volume-cells");
     const std::string bias = take_option(args, "--shadow-bias", "");
     try {

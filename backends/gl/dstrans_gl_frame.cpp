@@ -99,6 +99,9 @@ struct renderer::impl {
   timer whole;
   std::vector<std::string> recorded;
   int frames_drawn = 0;
+  // Temporal interlacing: the frames drawn into these targets since they were made, and the last one's block.
+  std::uint64_t sequence = 0;
+  frame_block previous{};
 
   ~impl();
   result<GLuint> program(const result<pass_sources>& p, const std::string& name);
@@ -288,7 +291,7 @@ void renderer::impl::make_particles() {
 }
 
 result<bool> renderer::impl::make_sized() {
-  for (int k = 0; k < plan.layers; ++k) {
+  for (int k = 0; k < plan.kept_layers(); ++k) {
     const std::string suffix = k ? " 2" : "";
     auto g = make_targets(gbuffer_targets(o.layout), o.width, o.height, "gbuffer" + suffix, true);
     if (!g) return failure{g.error()};
@@ -338,6 +341,7 @@ void renderer::impl::destroy_sized() {
   out.gbuffers.clear();
   out.light_buffers.clear();
   out.post.clear();
+  sequence = 0;  // new targets hold no previous frame
   out.output = nullptr;
   if (lit_colour_only) glDeleteFramebuffers(1, &lit_colour_only);
   if (out.kbuffer_heads) glDeleteTextures(1, &out.kbuffer_heads);
@@ -485,7 +489,7 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
       } else {
         bind_gbuffer(binding(slot::gbuffer), out.gbuffers[0]);
         bind_textures(binding(slot::light), out.light_buffers[0]);
-        if (plan.peeling) {
+        if (plan.kept_layers() == 2) {  // peeling's second layer, or the previous frame's
           bind_gbuffer(binding(slot::gbuffer2), out.gbuffers[1]);
           bind_textures(binding(slot::light2), out.light_buffers[1]);
         }
@@ -574,9 +578,17 @@ result<bool> renderer::resize(int width, int height) {
 void renderer::render(const camera& view, const draw_geometry& draw) {
   impl& r = *p_;
   state_guard keep;
-  frame_block camera_block = camera_frame(view, r.description.ambient, r.o);
+  frame_block camera_block = sequence_frame(camera_frame(view, r.description.ambient, r.o), r.previous, r.sequence, r.plan, r.o);
   camera_block.params.z = float(hair_shadow_light(r.plan));
   glNamedBufferSubData(r.frame_ubo, 0, sizeof camera_block, &camera_block);
+  // Temporal interlacing draws into the other G-buffer and light buffer each frame; the last frame's become
+  // the second layer, which the compose pass reads.
+  if (r.plan.temporal && r.sequence > 0) {
+    std::swap(r.out.gbuffers[0], r.out.gbuffers[1]);
+    std::swap(r.out.light_buffers[0], r.out.light_buffers[1]);
+  }
+  r.previous = camera_block;
+  ++r.sequence;
   if (r.smoke.on) {
     const std::vector<particle_vertex> quads = particle_quads(r.description, view);
     r.particle_vertices = quads.size();

@@ -186,6 +186,13 @@ struct renderer::impl {
     std::vector<glm::vec4> zeros;  // one a light-buffer target
   };
   std::vector<frame_clear> clears;
+  // Temporal interlacing: the frames recorded into these targets since they were made, the last one's
+  // block, and the sets, uses and clears of the next frame, which draws into the other G-buffer.
+  std::uint64_t sequence = 0;
+  frame_block previous{};
+  std::vector<std::vector<VkDescriptorSet>> swapped_sets;
+  std::vector<std::vector<image_use>> swapped_uses;
+  std::vector<frame_clear> swapped_clears;
   // What settle and rest build, kept so that recording a frame allocates nothing.
   std::vector<VkImageMemoryBarrier> moves;
   std::vector<image_use> resting;
@@ -201,6 +208,7 @@ struct renderer::impl {
   result<bool> make_sized();
   void destroy_sized();
   result<bool> make_sets();
+  result<bool> fill_sets();
   result<VkDescriptorSet> make_set(const program& p, const bindings& b, access reads, std::vector<image_use>& used);
   const vk::targets* attachments(const scheduled_pass& pass) const;
   std::vector<image_use> copies(const scheduled_pass& pass) const;
@@ -212,6 +220,7 @@ struct renderer::impl {
   void rest(VkCommandBuffer cmd);
   void run(VkCommandBuffer cmd, const scheduled_pass& pass, VkDescriptorSet set, int slot, const draw_geometry& draw);
   void copy_shadow_picture(VkCommandBuffer cmd);
+  void swap_layers();
 };
 
 renderer::impl::~impl() {
@@ -443,7 +452,7 @@ result<bool> renderer::impl::make_particles() {
 }
 
 result<bool> renderer::impl::make_sized() {
-  for (int k = 0; k < plan.layers; ++k) {
+  for (int k = 0; k < plan.kept_layers(); ++k) {
     const std::string suffix = k ? " 2" : "";
     auto g = dev.make_targets(gbuffer_targets(o.layout), o.width, o.height, "gbuffer" + suffix, true);
     if (!g) return failure{g.error()};
@@ -508,7 +517,19 @@ void renderer::impl::destroy_sized() {
   if (pool) vkDestroyDescriptorPool(dev.ctx().device, pool, dev.ctx().allocator);
   pool = VK_NULL_HANDLE;
   sets.clear();
+  swapped_sets.clear();
   states.clear();  // new images: nothing to wait for
+  sequence = 0;    // and no previous frame
+}
+
+// The G-buffer and light buffer a frame draws into become the previous frame's, which the compose pass
+// reads, and the other pair the next frame's, with the sets, uses and clears made for that order.
+void renderer::impl::swap_layers() {
+  std::swap(out.gbuffers[0], out.gbuffers[1]);
+  std::swap(out.light_buffers[0], out.light_buffers[1]);
+  std::swap(sets, swapped_sets);
+  std::swap(uses, swapped_uses);
+  std::swap(clears, swapped_clears);
 }
 
 const program& renderer::impl::program_of(const scheduled_pass& pass) const {
@@ -555,7 +576,7 @@ bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const
       b.images[binding(slot::light) + int(t)] = &out.light_buffers[layer].colors[t];
     b.images[binding(slot::peel_depth)] = o.layout == gbuffer_layout::compact ? &out.gbuffers[0].depth : &out.gbuffers[0].colors[3];
   }
-  if (plan.peeling) {
+  if (plan.kept_layers() == 2) {  // peeling's second layer, or the previous frame's
     add_gbuffer(binding(slot::gbuffer2), out.gbuffers[1]);
     for (std::size_t t = 0; t < out.light_buffers[1].colors.size(); ++t)
       b.images[binding(slot::light2) + int(t)] = &out.light_buffers[1].colors[t];
@@ -646,12 +667,12 @@ result<VkDescriptorSet> renderer::impl::make_set(const program& p, const binding
   return set;
 }
 
-// Every pass's set, a frame in flight each.
+// Every pass's set, a frame in flight each; with temporal interlacing also for the G-buffers swapped.
 result<bool> renderer::impl::make_sets() {
   std::uint32_t count = 0;
   for (const scheduled_pass& pass : schedule.passes)
     count += pass.kind == pass_kind::transfer ? 0u : 1u;
-  count = std::max(count, 1u) * std::uint32_t(slots);
+  count = std::max(count, 1u) * std::uint32_t(slots) * (plan.temporal ? 2u : 1u);
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 4 * count},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * count},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16 * count},
@@ -661,6 +682,18 @@ result<bool> renderer::impl::make_sets() {
   pci.poolSizeCount = 4;
   pci.pPoolSizes = sizes;
   if (vkCreateDescriptorPool(dev.ctx().device, &pci, dev.ctx().allocator, &pool) != VK_SUCCESS) return failure{"no descriptor pool"};
+  if (plan.temporal) {
+    std::swap(out.gbuffers[0], out.gbuffers[1]);
+    std::swap(out.light_buffers[0], out.light_buffers[1]);
+    auto ok = fill_sets();
+    swap_layers();  // the targets back, what was made for them aside
+    if (!ok) return ok;
+  }
+  return fill_sets();
+}
+
+// The sets, image uses and clears of a frame that draws into out.gbuffers[0] and out.light_buffers[0].
+result<bool> renderer::impl::fill_sets() {
   sets.assign(std::size_t(slots), std::vector<VkDescriptorSet>(schedule.passes.size(), VK_NULL_HANDLE));
   uses.assign(schedule.passes.size(), {});
   clears.clear();
@@ -946,9 +979,14 @@ result<bool> renderer::resize(int width, int height) {
 void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geometry& draw) {
   impl& r = *p_;
   const int slot = r.frames_recorded % r.slots;
-  frame_block camera_block = camera_frame(view, r.description.ambient, r.o);
+  frame_block camera_block = sequence_frame(camera_frame(view, r.description.ambient, r.o), r.previous, r.sequence, r.plan, r.o);
   camera_block.params.z = float(hair_shadow_light(r.plan));
   std::memcpy(r.camera_blocks[std::size_t(slot)].mapped, &camera_block, sizeof camera_block);
+  // Temporal interlacing draws into the other G-buffer and light buffer each frame; the last frame's become
+  // the second layer, which the compose pass reads.
+  if (r.plan.temporal && r.sequence > 0) r.swap_layers();
+  r.previous = camera_block;
+  ++r.sequence;
   if (r.smoke.on) {
     const std::vector<particle_vertex> q = particle_quads(r.description, view);
     r.quad_counts[std::size_t(slot)] = q.size();

@@ -14,7 +14,8 @@ void main() {
   if (dst_transparent(m.diffuse_alpha.w) || gl_FragCoord.z <= texelFetch(dst_peel_depth, dst_pixel(), 0).x) discard;
 #endif
 #ifdef DST_TRANSPARENCY
-  if (dst_transparent(m.diffuse_alpha.w) && !dst_interlace_keep(dst_pixel(), frame.size.xy)) discard;
+  // frame.interlace.xy: this frame's phase (temporal interlacing alternates the rows that keep glass).
+  if (dst_transparent(m.diffuse_alpha.w) && !dst_interlace_keep(dst_pixel() + frame.interlace.xy, frame.size.xy)) discard;
 #endif
   dst_gbuffer_write(dst_material_surface(m, world_normal));
 }

@@ -1,7 +1,8 @@
 // Where the single-layer interlaced G-buffer keeps the layer behind (or in front of) a pixel: on the
 // pixel's interlace partner, in the same G-buffer and light buffer. With DST_RECONSTRUCT, the partner's
 // sample averaged with the other layer's samples around the pixel that show the same surface
-// (dst_layer_similarity and dst_reconstruct, interlace.hpp).
+// (dst_layer_similarity and dst_reconstruct, interlace.hpp). With DST_TEMPORAL, the previous frame's sample
+// (the second G-buffer and light buffer) where it shows the layer this pixel misses.
 #ifdef DST_RECONSTRUCT
 // The other layer's samples around `pixel` besides its partner (up to three: the 4-neighbours the
 // predicate puts in the other layer), and how surely each shows the partner's surface.
@@ -28,7 +29,7 @@ void dst_other_around(ivec2 pixel, out ivec2 at[3], out vec3 weights) {
   }
 }
 
-dst_surface dst_other(ivec2 pixel) {
+dst_surface dst_spatial_other(ivec2 pixel) {
   ivec2 at[3];
   vec3 w;
   dst_other_around(pixel, at, w);
@@ -50,7 +51,7 @@ dst_surface dst_other(ivec2 pixel) {
   return r;
 }
 
-dst_light_sample dst_other_light(ivec2 pixel) {
+dst_light_sample dst_spatial_other_light(ivec2 pixel) {
   ivec2 at[3];
   vec3 w;
   dst_other_around(pixel, at, w);
@@ -62,6 +63,71 @@ dst_light_sample dst_other_light(ivec2 pixel) {
   return r;
 }
 #else
-dst_surface dst_other(ivec2 pixel) { return dst_gbuffer_read(dst_interlace_partner(pixel, frame.size.xy)); }
-dst_light_sample dst_other_light(ivec2 pixel) { return dst_light_read(dst_interlace_partner(pixel, frame.size.xy)); }
+dst_surface dst_spatial_other(ivec2 pixel) { return dst_gbuffer_read(dst_interlace_partner(pixel, frame.size.xy)); }
+dst_light_sample dst_spatial_other_light(ivec2 pixel) { return dst_light_read(dst_interlace_partner(pixel, frame.size.xy)); }
+#endif
+
+#ifdef DST_TEMPORAL
+// The interlace phase alternates, so where the camera stood still the previous frame stored at this pixel
+// the layer this frame does not. Where the other layer of a pixel comes from: 0, the spatial
+// reconstruction; 1, the previous frame's sample at `at`; 2, nowhere: no glass lies in front of this
+// pixel's opaque surface, which is then its own other layer.
+// - A pixel that keeps glass this frame and holds an opaque surface has no glass in front of it.
+// - The previous frame's sample is taken where it lies on this pixel's ray now (within a pixel) and is the
+//   layer missing here: glass in front of this pixel's opaque surface, where the other layer's samples
+//   beside the pixel show glass (so glass that moved away leaves nothing), or the opaque surface behind
+//   this pixel's glass. The previous frame's pixel is found by reprojecting the partner's depth.
+// - Where the camera has not moved, a pixel that kept glass in the previous frame and held this same
+//   opaque surface had none in front of it (glass that moved in shows from the next frame); and glass it
+//   kept with none two pixels either side along the interlace is a sliver one pixel thin, which this frame
+//   cannot see beside the pixel (a sliver that moved away shows for one frame more).
+bool dst_lone_glass(ivec2 pixel, ivec2 step, dst_surface here) {
+  if (frame.interlace.w == 0) return false;
+  ivec2 size = frame.size.xy;
+  dst_surface h = dst_gbuffer2_read(pixel);
+  ivec2 a = clamp(pixel + 2 * step, ivec2(0), size - 1), b = clamp(pixel - 2 * step, ivec2(0), size - 1);
+  return dst_transparent(h.alpha) && h.depth < here.depth && !dst_transparent(dst_gbuffer2_read(a).alpha) &&
+         !dst_transparent(dst_gbuffer2_read(b).alpha);
+}
+
+int dst_history_at(ivec2 pixel, out ivec2 at) {
+  at = pixel;
+  ivec2 size = frame.size.xy;
+  dst_surface here = dst_gbuffer_read(pixel);
+  bool want_glass = !dst_transparent(here.alpha);
+  if (want_glass && dst_interlace_keep(pixel + frame.interlace.xy, size)) return 2;
+  if (frame.interlace.z == 0) return 0;
+  ivec2 partner = dst_interlace_partner(pixel, size);
+  ivec2 beyond = clamp(2 * pixel - partner, ivec2(0), size - 1);
+  dst_surface p = dst_gbuffer_read(partner);
+  if (want_glass && !dst_transparent(p.alpha) && !dst_transparent(dst_gbuffer_read(beyond).alpha))
+    return dst_lone_glass(pixel, pixel - partner, here) ? 1 : 0;
+  vec4 before = frame.prev_view_proj * vec4(dst_world_position(pixel, p.depth), 1.0f);
+  if (!(before.w > 0.0f)) return 0;
+  vec2 w = dst_ndc_window(before.xy / before.w, size);
+  if (any(lessThan(w, vec2(0.0f))) || any(greaterThanEqual(w, vec2(size)))) return 0;
+  at = ivec2(w);
+  dst_surface h = dst_gbuffer2_read(at);
+  vec4 world = frame.prev_inv_view_proj * vec4(dst_pixel_ndc(at, size), h.depth, 1.0f);
+  vec4 now = frame.view_proj * vec4(world.xyz / world.w, 1.0f);
+  if (!(now.w > 0.0f) || distance(dst_ndc_window(now.xy / now.w, size), vec2(pixel) + 0.5f) > 1.0f) return 0;
+  float depth = now.z / now.w;
+  if (dst_transparent(h.alpha) == want_glass) return (want_glass ? depth < here.depth : depth > here.depth) ? 1 : 0;
+  bool same_surface = abs(h.depth - here.depth) <= 1e-5f * here.depth;
+  return want_glass && frame.interlace.w == 1 && at == pixel && same_surface ? 2 : 0;
+}
+
+dst_surface dst_other(ivec2 pixel) {
+  ivec2 at;
+  int from = dst_history_at(pixel, at);
+  return from == 1 ? dst_gbuffer2_read(at) : from == 2 ? dst_gbuffer_read(pixel) : dst_spatial_other(pixel);
+}
+dst_light_sample dst_other_light(ivec2 pixel) {
+  ivec2 at;
+  int from = dst_history_at(pixel, at);
+  return from == 1 ? dst_light2_read(at) : from == 2 ? dst_light_read(pixel) : dst_spatial_other_light(pixel);
+}
+#else
+dst_surface dst_other(ivec2 pixel) { return dst_spatial_other(pixel); }
+dst_light_sample dst_other_light(ivec2 pixel) { return dst_spatial_other_light(pixel); }
 #endif

@@ -40,8 +40,8 @@ struct plan_facts {
   std::set<std::string> effects, switches, targets;
 };
 
-plan_facts plan_of(const std::string& scene) {
-  const auto r = run("plan " + scene + " --json", "");
+plan_facts plan_of(const std::string& scene, const std::string& options = "") {
+  const auto r = run("plan " + scene + " --json" + options, "");
   INFO(r.out);
   REQUIRE(r.status == 0);
   const json p = json::parse(r.out);
@@ -72,6 +72,20 @@ TEST_CASE("plan --json: plain deferred without glass, then exactly one effect mo
         std::set<std::string>{"shadow: DST_TRANSPARENT_SHADOWS", "light: DST_TRANSPARENT_SHADOWS"});
   CHECK(minus(seen.targets, refractive.targets) == std::set<std::string>{"shadow.colour"});
   for (const plan_facts* f : {&plain, &pane, &refractive}) CHECK(minus(f->switches, seen.switches).empty());
+}
+
+TEST_CASE("plan --temporal on: the previous frame's targets and the compose switch, only where there is glass", "[cli][plan]") {
+  const plan_facts pane = plan_of(ladder_scene(true, false, false)), temporal = plan_of(ladder_scene(true, false, false), " --temporal on");
+  CHECK(minus(temporal.targets, pane.targets) ==
+        std::set<std::string>{"previous.gbuffer.RT0", "previous.gbuffer.RT1", "previous.gbuffer.RT2", "previous.gbuffer.RT3",
+                              "previous.light.RT0"});
+  CHECK(minus(temporal.switches, pane.switches) == std::set<std::string>{"compose: DST_TEMPORAL"});
+  const plan_facts plain = plan_of(ladder_scene(false, false, false));
+  CHECK(plan_of(ladder_scene(false, false, false), " --temporal on").targets == plain.targets);
+  CHECK_THAT(run("plan " + ladder_scene(true, false, false) + " --temporal on", "").out, Catch::Contains("40 bytes a pixel on screen"));
+  const auto bad = run("plan " + ladder_scene(true, false, false) + " --temporal maybe", "");
+  CHECK(bad.status == 2);
+  CHECK_THAT(bad.out, Catch::Contains("--temporal must be on or off, not 'maybe'"));
 }
 
 TEST_CASE("plan --json lists a frame's passes in order, each light's among them", "[cli][plan]") {

@@ -22,6 +22,11 @@ struct dst_frame_data {
   vec4 params;          // x: refraction strength in pixels, y: shadow bias (a fraction of the receiver's
                         // distance from the light), z: the light whose shadow map hair reads (-1: none),
                         // w: k of the k-buffer
+  mat4 prev_view_proj;     // the previous frame's view_proj (temporal interlacing; else view_proj)
+  mat4 prev_inv_view_proj; // and its inverse
+  ivec4 interlace;      // xy: added to a pixel before the interlace predicate (this frame's phase), z: 1
+                        // when the second G-buffer holds the previous frame's, w: 1 when that frame was
+                        // seen with this view_proj
 };
 )
 
@@ -44,6 +49,6 @@ struct dst_light_data {
 };
 )
 
-static_assert(sizeof(dstrans::shader::dst_frame_data) == 256 && sizeof(dstrans::shader::dst_material_data) == 32 &&
+static_assert(sizeof(dstrans::shader::dst_frame_data) == 400 && sizeof(dstrans::shader::dst_material_data) == 32 &&
                   sizeof(dstrans::shader::dst_light_data) == 192,
               "dstrans blocks: a block's C++ size differs from its std140/std430 size (GLM with padding?)");

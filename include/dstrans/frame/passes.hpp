@@ -261,15 +261,20 @@ inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on
   for (effect e : {effect::transparency, effect::refraction})
     if (on.has(e)) switches.push_back(effect_switch(e));
   std::string other = "interlaced.glsl";
+  const bool temporal = temporal_interlacing(o, on);
   if (o.method == technique::interlaced) {
     if (on.has(effect::transparency)) add_predicate(p.fragment, o.interlace);
     if (on.has(effect::transparency) && o.reconstruct) switches.push_back("DST_RECONSTRUCT");
+    if (temporal) switches.push_back("DST_TEMPORAL");
   } else {
+    other = "peeled.glsl";
+  }
+  // Peeling's second layer, or the previous frame's.
+  if (o.method != technique::interlaced || temporal) {
     read.first_binding = binding(slot::gbuffer2);
     add_gbuffer_layout(p.fragment, o.layout, "gbuffer2", read);
     read.first_binding = binding(slot::light2);
     add_light_layout(p.fragment, "light2", o, read);
-    other = "peeled.glsl";
   }
   // Without transparency the compose pass never asks for the other layer.
   std::vector<std::string> files{"compose.frag.glsl"};
@@ -318,7 +323,8 @@ inline std::uint32_t kbuffer_capacity(const options& o) {
 
 inline std::size_t frame_bytes(const frame_plan& p, const options& o) {
   const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
-  std::size_t bytes = std::size_t(p.pipeline.bytes_per_pixel) * pixels * std::size_t(std::max(p.layers, 1));
+  // The plan's bytes a pixel count the previous frame's G-buffer of temporal interlacing, not peeling's second.
+  std::size_t bytes = std::size_t(p.pipeline.bytes_per_pixel) * pixels * std::size_t(p.peeling ? 2 : 1);
   if (p.shadows != shadow_mode::off) bytes += std::size_t(o.shadow_size) * std::size_t(o.shadow_size) * 8u;
   if (p.on.has(effect::many_layers)) bytes += std::size_t(kbuffer_capacity(o)) * 16u + pixels * 4u;
   return bytes;

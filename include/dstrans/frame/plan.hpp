@@ -54,6 +54,11 @@ struct options {
   // How the compose pass finds a pixel's other layer: the partner's sample (the thesis), or the edge-aware
   // reconstruction from the other layer's samples around it (dst_reconstruct).
   bool reconstruct = false;
+  // Temporal interlacing (interlaced technique with glass): the rows (columns, checker squares) that keep glass
+  // change places every frame, and the compose pass takes a pixel's other layer from the previous frame's
+  // G-buffer where it lies on the pixel's ray now and is the layer missing there, else as `reconstruct` says.
+  // The previous frame's G-buffer and light buffer are kept: they double the layer's bytes.
+  bool temporal = false;
   int width = 320, height = 180;
   float refraction = 8.0f;      // strength in pixels; 0 turns refraction off
   // A fraction of the receiver's distance from the light, along the light's axis: the receiver is moved
@@ -100,8 +105,11 @@ struct frame_plan {
   shadow_mode shadows;     // the shadow map: off, opaque (depth), transparent (depth and colour)
   std::vector<shadow_mode> lookups;  // per light: no shadow, the plain lookup, or Eq. 3.1's
   bool forward, forward_depth, peeling;
-  int layers;              // G-buffers (and light buffers): 0 forward, 2 peeling, 1 interlaced
+  bool temporal;           // temporal interlacing: a second G-buffer holds the previous frame's
+  int layers;              // G-buffers (and light buffers) a frame draws: 0 forward, 2 peeling, 1 interlaced
   post_plan post;          // the scene's post-processing chain (deferred techniques only; in pipeline too)
+  // The G-buffers (and light buffers) kept: those drawn, and with temporal interlacing the previous frame's.
+  int kept_layers() const { return temporal ? 2 : layers; }
   bool uses(shadow_mode lookup) const {
     for (shadow_mode m : lookups)
       if (m == lookup) return true;
@@ -109,6 +117,8 @@ struct frame_plan {
   }
 };
 frame_plan plan_of(const scene& s, const options& o);
+// Whether a frame with options `o` and effects `on` interlaces temporally (frame_plan::temporal).
+bool temporal_interlacing(const options& o, effects on);
 // Whether the options' images (the frame and the shadow map) fit a device whose images and viewports are
 // at most `largest` texels a side: checked by both renderers before they allocate anything.
 result<bool> fits_device(const options& o, int largest);
@@ -163,8 +173,16 @@ using frame_block = shader::dst_frame_data;
 using material_block = shader::dst_material_data;
 using light_block = shader::dst_light_data;
 
-// The camera's frame block for an image of `o.width` x `o.height`.
+// The camera's frame block for an image of `o.width` x `o.height`: a first frame, with no previous one.
 frame_block camera_frame(const scene& s, const options& o);
+// What temporal interlacing adds to a pixel before the interlace predicate in frame `index`: every other
+// frame the rows (columns, checker squares) that keep glass change places.
+glm::ivec2 interlace_phase(predicate p, std::uint64_t index);
+// The camera block `f` as frame `index` (from 0) of a sequence drawn with the same targets, `previous` being
+// frame index - 1's: with temporal interlacing, that frame's interlace phase, and the previous frame's
+// matrices, with which the compose pass finds the second G-buffer's samples; otherwise `f` as it is.
+frame_block sequence_frame(frame_block f, const frame_block& previous, std::uint64_t index, const frame_plan& p,
+                           const options& o);
 // The same for camera `c` (a viewer's, moving from frame to frame).
 frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o);
 // The same, seen from spot light `l` of light_blocks (its shadow map's view and projection).
@@ -329,6 +347,10 @@ inline particle_plan particle_plan_of(const scene& s, const frame_plan& p, const
   return out;
 }
 
+inline bool temporal_interlacing(const options& o, effects on) {
+  return o.temporal && o.method == technique::interlaced && on.has(effect::transparency);
+}
+
 inline frame_plan plan_of(const scene& s, const options& o) {
   frame_plan p{};
   effects e = effects_of(scene_features(s));
@@ -352,7 +374,24 @@ inline frame_plan plan_of(const scene& s, const options& o) {
   p.forward = is_forward(o.method);
   p.forward_depth = o.method == technique::forward_depth;
   p.peeling = o.method == technique::peeling;
+  p.temporal = temporal_interlacing(o, p.on);
   p.layers = p.forward ? 0 : p.peeling ? 2 : 1;
+  // The previous frame's G-buffer and light buffer, which the compose pass reads.
+  if (p.temporal) {
+    std::vector<planned_target> history;
+    for (const planned_target& t : p.pipeline.targets)
+      if (t.name.rfind("gbuffer.", 0) == 0 || t.name.rfind("light.", 0) == 0) {
+        history.push_back(t);
+        history.back().name = "previous." + t.name;
+        p.pipeline.bytes_per_pixel += t.bytes_per_pixel;
+      }
+    for (planned_pass& pass : p.pipeline.passes)
+      if (pass.name == "compose") {
+        for (const planned_target& t : history) pass.reads.push_back(t.name);
+        pass.switches.push_back("DST_TEMPORAL");
+      }
+    p.pipeline.targets.insert(p.pipeline.targets.end(), history.begin(), history.end());
+  }
   // The scene's post-processing chain, on the deferred techniques (it reads the G-buffer): its passes and
   // targets join the plan, each target the final image's format.
   if (!p.forward) {
@@ -470,6 +509,8 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
       reads.push_back(gbuffer[1]);
       if (!s.lights.empty()) reads.push_back(light_buffer[1]);
     }
+    // Temporal interlacing: what the previous frame left, which no pass of this frame writes.
+    if (p.temporal) reads.insert(reads.end(), {"previous gbuffer", "previous light buffer"});
     add(pass_step::compose, "compose", "compose pass", pass_kind::fullscreen, -1, reads, {"frame"});
   }
   if (p.on.has(effect::many_layers) && !p.forward) {
@@ -513,6 +554,24 @@ inline frame_block camera_frame(const camera& c, glm::vec3 ambient, const option
   f.ambient = glm::vec4(ambient, 0.0f);
   f.size = {o.width, o.height, o.shadow_size, o.shadow_size};
   f.params = {o.refraction, o.shadow_bias, -1.0f, float(o.kbuffer_k)};
+  f.prev_view_proj = f.view_proj;
+  f.prev_inv_view_proj = f.inv_view_proj;
+  return f;
+}
+
+inline glm::ivec2 interlace_phase(predicate p, std::uint64_t index) {
+  const int odd = int(index % 2u);
+  return p == predicate::rows ? glm::ivec2(0, odd) : glm::ivec2(odd, 0);
+}
+
+inline frame_block sequence_frame(frame_block f, const frame_block& previous, std::uint64_t index, const frame_plan& p,
+                                  const options& o) {
+  if (!p.temporal) return f;
+  f.interlace = glm::ivec4(interlace_phase(o.interlace, index), index > 0 ? 1 : 0, index > 0 && previous.view_proj == f.view_proj ? 1 : 0);
+  if (index > 0) {
+    f.prev_view_proj = previous.view_proj;
+    f.prev_inv_view_proj = previous.inv_view_proj;
+  }
   return f;
 }
 
