@@ -19,6 +19,7 @@
 #include <dstrans/frame/plan.hpp>
 #include <image_error.hpp>
 #include <leaks.hpp>
+#include <temporal_bench.hpp>
 #include <dstrans/frame/passes.hpp>
 #include <dstrans_spirv.hpp>
 
@@ -1713,6 +1714,58 @@ TEST_CASE("temporal interlacing: a still camera's second frame is depth peeling'
         CHECK(worst <= 1);
       }
     }
+}
+
+TEST_CASE("the temporal benchmark's paths move what they say and nothing else", "[temporal][bench]") {
+  const scene room = example("glass_room.json");
+  const auto paths = cli::temporal_paths(room, 3);
+  REQUIRE(paths.size() == 5u);
+  for (const auto& [path, frames] : paths) {
+    INFO(path);
+    REQUIRE(frames.size() == 3u);
+    CHECK(frames[0].view.position == room.view.position);
+    CHECK(frames[0].view.target == room.view.target);
+    const camera &a = frames[1].view, &b = frames[2].view;
+    const bool moves = path == "orbit" || path == "pan" || path == "dolly";
+    CHECK((a.position != b.position || a.target != b.target) == moves);
+    std::size_t moved_objects = 0;
+    for (std::size_t k = 0; k < room.objects.size(); ++k) moved_objects += frames[2].objects[k].transform != room.objects[k].transform;
+    CHECK(moved_objects == (path == "moving pane" ? 1u : 0u));
+    if (path == "orbit") CHECK(glm::length(b.position - b.target) == Approx(glm::length(room.view.position - room.view.target)));
+    if (path == "pan") CHECK(b.position == room.view.position);
+    if (path == "dolly") CHECK(glm::length(b.position - b.target) < glm::length(a.position - a.target));
+  }
+}
+
+TEST_CASE("the temporal benchmark: a record a path and method, peeling its own reference, the still camera converged",
+          "[temporal][bench][gl]") {
+  auto ctx = gl::headless_context::create();
+  if (!ctx) {
+    WARN("skipped GL: " << ctx.error());
+    return;
+  }
+  options o = small(96, 54);
+  auto t = cli::temporal_records(example("glass_room.json"), o, 2, "gl", [](const std::vector<scene>& f, const options& with) {
+    return render::run_gl_sequence(f, with, pass_shaders());
+  });
+  INFO((t ? "" : t.error()));
+  REQUIRE(t);
+  REQUIRE(t->records.size() == 25u);
+  std::map<std::string, nlohmann::ordered_json> still;
+  for (const auto& r : t->records) {
+    if (r["settings"]["path"] == "still") still[r["settings"]["method"].get<std::string>()] = r;
+    CHECK(r["frame_ms"].get<double>() > 0.0);
+  }
+  CHECK(still.at("peeling")["rmse_transparent"].get<double>() == 0.0);
+  CHECK(still.at("peeling-compact")["rmse_transparent"].get<double>() == 0.0);
+  CHECK(still.at("temporal")["rmse_transparent"].get<double>() < 0.5);
+  CHECK(still.at("thesis")["rmse_transparent"].get<double>() > 1.0);
+  CHECK(still.at("thesis")["bytes_per_pixel"] == 20);
+  CHECK(still.at("spatial")["bytes_per_pixel"] == 12);
+  CHECK(still.at("temporal")["bytes_per_pixel"] == 24);
+  CHECK(still.at("peeling")["bytes_per_pixel"] == 40);
+  CHECK(t->strip.width == 2 * (4 * 32 + 6));
+  CHECK(t->strip.height == 2 * 5 * 18 + 2 * 4);
 }
 
 TEST_CASE("temporal interlacing on GL and Vulkan: the same frames", "[temporal][render][gl][vk]") {

@@ -23,6 +23,7 @@
 #include "output_dir.hpp"
 #include "limit.hpp"
 #include "paired.hpp"
+#include "temporal_bench.hpp"
 #include "leaks.hpp"
 #include <dstrans/frame/passes.hpp>
 #ifdef DSTRANS_HAVE_GL
@@ -110,22 +111,6 @@ scene with_lights(const scene& s, int n) {
   return out;
 }
 
-// A record's error fields: RMSE, PSNR, SSIM and FLIP against its reference over all pixels, and RMSE, SSIM
-// and FLIP over the pixels the comparison is about (glass, hair, smoke: "_transparent").
-json error_fields(const render::image_error& e) {
-  return {{"rmse", e.all.rmse},
-          {"rmse_transparent", e.masked.rmse},
-          {"psnr", std::isfinite(e.all.psnr) ? json(e.all.psnr) : json(nullptr)},
-          {"ssim", e.all.ssim},
-          {"ssim_transparent", e.masked.ssim},
-          {"flip", e.all.flip},
-          {"flip_transparent", e.masked.flip}};
-}
-json with_errors(json record, const render::image_error& e) {
-  record.update(error_fields(e));
-  return record;
-}
-
 // The hair scene seen from `zoom` times closer to the camera's target (S1 measured four zoom levels).
 scene zoomed(const scene& s, float zoom) {
   scene out = s;
@@ -156,21 +141,21 @@ result<json> layers_records(const scene& hair, const render::options& base, bool
       // As nvpro's OIT table counts them: the lists' heads and nodes, and the two tail targets.
       const int bytes = (lists ? 4 + kbuffer_nodes_per_pixel * kbuffer_node_bytes : 0) + 8 + 2;
       const double ms = f.pass_ms.at("capture") + f.pass_ms.at("resolve");
-      records.push_back(with_errors({{"technique", std::string("layers-") + render::layers_name(variant)},
-                                     {"scene", "hair"},
-                                     {"backend", backend},
-                                     {"settings", {{"k", variant == L::deferred || variant == L::tailless ? json(k) : json(nullptr)},
-                                                   {"zoom", zoom}, {"hair_pixels", counts.pixels}, {"mean_layers", counts.mean},
-                                                   {"width", base.width}, {"height", base.height}, {"frames", f.frames},
-                                                   {"overflow", f.kbuffer_overflow}}},
-                                     {"frame_ms", f.frame_ms},
-                                     {"frame_ms_spread", f.frame_ms_spread},
-                                     {"pass_ms", f.pass_ms},
-                                     {"layers_ms", ms},
-                                     {"bytes_per_pixel", bytes},
-                                     {"render_targets", nullptr},
-                                     {"reference", "forward reference (every fragment sorted and shaded fully)"},
-                                     {"leak_pixels", nullptr}}, e));
+      records.push_back(render::with_errors({{"technique", std::string("layers-") + render::layers_name(variant)},
+                                             {"scene", "hair"},
+                                             {"backend", backend},
+                                             {"settings", {{"k", variant == L::deferred || variant == L::tailless ? json(k) : json(nullptr)},
+                                                           {"zoom", zoom}, {"hair_pixels", counts.pixels}, {"mean_layers", counts.mean},
+                                                           {"width", base.width}, {"height", base.height}, {"frames", f.frames},
+                                                           {"overflow", f.kbuffer_overflow}}},
+                                             {"frame_ms", f.frame_ms},
+                                             {"frame_ms_spread", f.frame_ms_spread},
+                                             {"pass_ms", f.pass_ms},
+                                             {"layers_ms", ms},
+                                             {"bytes_per_pixel", bytes},
+                                             {"render_targets", nullptr},
+                                             {"reference", "forward reference (every fragment sorted and shaded fully)"},
+                                             {"leak_pixels", nullptr}}, e));
     };
     record(L::forward, 64, *reference);
     for (L variant : {L::deferred, L::tailless})
@@ -221,24 +206,24 @@ result<json> volume_records(const scene& smoke, const render::options& base, boo
     const render::image_error e = render::compare(f.final_image, reference->final_image, mask);
     const bool volumes = lighting != P::forward;
     const double bake = volumes ? f.pass_ms.at("bake") : 0.0, particle_ms = f.pass_ms.at("particles");
-    records.push_back(with_errors({{"technique", std::string("volumes-") + render::particle_light_name(lighting)},
-                                   {"scene", "smoke"},
-                                   {"backend", backend},
-                                   {"settings", {{"cells", volumes ? json(cells) : json(nullptr)},
-                                                 {"bytes_per_cell", volumes ? json(render::particle_model(o).bytes_per_cell()) : json(nullptr)},
-                                                 {"systems", smoke.particles.size()}, {"particles", particles},
-                                                 {"lights", smoke.lights.size()}, {"smoke_pixels", smoke_pixels},
-                                                 {"width", base.width}, {"height", base.height}, {"frames", f.frames}}},
-                                   {"frame_ms", f.frame_ms},
-                                   {"frame_ms_spread", f.frame_ms_spread},
-                                   {"pass_ms", f.pass_ms},
-                                   {"bake_ms", bake},
-                                   {"particles_ms", particle_ms},
-                                   {"lighting_ms", f.frame_ms - without->frame_ms},
-                                   {"bytes_per_pixel", nullptr},
-                                   {"render_targets", nullptr},
-                                   {"reference", "forward reference (every particle fragment lit by every light)"},
-                                   {"leak_pixels", nullptr}}, e));
+    records.push_back(render::with_errors({{"technique", std::string("volumes-") + render::particle_light_name(lighting)},
+                                           {"scene", "smoke"},
+                                           {"backend", backend},
+                                           {"settings", {{"cells", volumes ? json(cells) : json(nullptr)},
+                                                         {"bytes_per_cell", volumes ? json(render::particle_model(o).bytes_per_cell()) : json(nullptr)},
+                                                         {"systems", smoke.particles.size()}, {"particles", particles},
+                                                         {"lights", smoke.lights.size()}, {"smoke_pixels", smoke_pixels},
+                                                         {"width", base.width}, {"height", base.height}, {"frames", f.frames}}},
+                                           {"frame_ms", f.frame_ms},
+                                           {"frame_ms_spread", f.frame_ms_spread},
+                                           {"pass_ms", f.pass_ms},
+                                           {"bake_ms", bake},
+                                           {"particles_ms", particle_ms},
+                                           {"lighting_ms", f.frame_ms - without->frame_ms},
+                                           {"bytes_per_pixel", nullptr},
+                                           {"render_targets", nullptr},
+                                           {"reference", "forward reference (every particle fragment lit by every light)"},
+                                           {"leak_pixels", nullptr}}, e));
   };
   record(P::forward, 0, *reference);
   const std::vector<int> sizes = quick ? std::vector<int>{8, 32} : std::vector<int>{8, 12, 16, 24, 32};
@@ -348,16 +333,16 @@ result<json> post_records(const scene& room, const render::options& base, const 
     auto f = draw(s, o);
     if (!f) return failure{f.error()};
     const render::image_error e = render::compare(f->final_image, reference, edges);
-    records.push_back(with_errors({{"technique", std::string("aa-") + v.name},
-                                   {"scene", "glass_room_post"},
-                                   {"backend", backend},
-                                   {"settings", {{"width", o.width}, {"height", o.height}, {"frames", f->frames}, {"lights", s.lights.size()},
-                                                 {"edge_pixels", edge_pixels}}},
-                                   {"frame_ms", f->frame_ms},
-                                   {"frame_ms_spread", f->frame_ms_spread},
-                                   {"pass_ms", f->pass_ms},
-                                   {"post_ms", v.chain.empty() ? 0.0 : f->pass_ms.at("post aa")},
-                                   {"reference", "depth peeling at twice the size, 2x2 box-filtered"}}, e));
+    records.push_back(render::with_errors({{"technique", std::string("aa-") + v.name},
+                                           {"scene", "glass_room_post"},
+                                           {"backend", backend},
+                                           {"settings", {{"width", o.width}, {"height", o.height}, {"frames", f->frames}, {"lights", s.lights.size()},
+                                                         {"edge_pixels", edge_pixels}}},
+                                           {"frame_ms", f->frame_ms},
+                                           {"frame_ms_spread", f->frame_ms_spread},
+                                           {"pass_ms", f->pass_ms},
+                                           {"post_ms", v.chain.empty() ? 0.0 : f->pass_ms.at("post aa")},
+                                           {"reference", "depth peeling at twice the size, 2x2 box-filtered"}}, e));
   }
   return records;
 }
@@ -372,24 +357,23 @@ result<json> reconstruct_records(const scene& room, const render::options& base,
   o.method = render::technique::peeling;
   auto peeled = draw(room, o);
   if (!peeled) return failure{peeled.error()};
-  std::vector<bool> glass(peeled->gbuffer[0].size());
-  for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, peeled->gbuffer[0][i]).w < 1.0f;
+  const std::vector<bool> glass = render::glass_pixels(*peeled);
   auto record = [&](const std::string& technique, const render::options& with, const render::frame& f) {
     const render::image_error e = render::compare(f.final_image, peeled->final_image, glass);
     const bool peeling = with.method == render::technique::peeling;
     const pipeline_plan plan = render::plan_of(room, with).pipeline;
-    records.push_back(with_errors({{"technique", technique},
-                                   {"scene", "glass_room_reconstruct"},
-                                   {"backend", backend},
-                                   {"settings", {{"predicate", peeling ? json(nullptr) : json(render::predicate_name(with.interlace))},
-                                                 {"reconstruction", peeling ? json(nullptr) : json(with.reconstruct ? "edge-aware" : "partner")},
-                                                 {"layout", render::layout_name(with.layout)}, {"lights", room.lights.size()}, {"width", with.width},
-                                                 {"height", with.height}, {"frames", f.frames}}},
-                                   {"frame_ms", f.frame_ms},
-                                   {"frame_ms_spread", f.frame_ms_spread},
-                                   {"peeling_ms", peeled->frame_ms},
-                                   {"bytes_per_pixel", peeling ? 2 * plan.bytes_per_pixel : plan.bytes_per_pixel},  // the plan counts one layer
-                                   {"reference", "deferred depth peeling"}}, e));
+    records.push_back(render::with_errors({{"technique", technique},
+                                           {"scene", "glass_room_reconstruct"},
+                                           {"backend", backend},
+                                           {"settings", {{"predicate", peeling ? json(nullptr) : json(render::predicate_name(with.interlace))},
+                                                         {"reconstruction", peeling ? json(nullptr) : json(with.reconstruct ? "edge-aware" : "partner")},
+                                                         {"layout", render::layout_name(with.layout)}, {"lights", room.lights.size()}, {"width", with.width},
+                                                         {"height", with.height}, {"frames", f.frames}}},
+                                           {"frame_ms", f.frame_ms},
+                                           {"frame_ms_spread", f.frame_ms_spread},
+                                           {"peeling_ms", peeled->frame_ms},
+                                           {"bytes_per_pixel", peeling ? 2 * plan.bytes_per_pixel : plan.bytes_per_pixel},  // the plan counts one layer
+                                           {"reference", "deferred depth peeling"}}, e));
   };
   record("peeling", o, *peeled);
   o.method = render::technique::interlaced;
@@ -424,8 +408,7 @@ result<json> specular_records(const scene& room, const render::options& base, co
   o.rgb_specular = true;
   auto peeled = draw(coloured, o);
   if (!peeled) return failure{peeled.error()};
-  std::vector<bool> glass(peeled->gbuffer[0].size());
-  for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, peeled->gbuffer[0][i]).w < 1.0f;
+  const std::vector<bool> glass = render::glass_pixels(*peeled);
   json records = json::array();
   o.method = render::technique::interlaced;
   const std::vector<bool> everywhere(glass.size(), true);
@@ -438,18 +421,18 @@ result<json> specular_records(const scene& room, const render::options& base, co
       if (!f) return failure{f.error()};
       if (rgb) with_rgb = *f;
       const render::image_error e = render::compare(f->final_image, peeled->final_image, glass);
-      records.push_back(with_errors({{"technique", std::string("interlaced-") + (rgb ? "rgb" : "white") + "-" + render::layout_name(l)},
-                                     {"scene", "glass_room_specular"},
-                                     {"backend", backend},
-                                     {"settings", {{"specular", rgb ? "rgb" : "white"}, {"layout", render::layout_name(l)},
-                                                   {"lights", coloured.lights.size()}, {"width", o.width}, {"height", o.height},
-                                                   {"frames", f->frames}}},
-                                     {"frame_ms", f->frame_ms},
-                                     {"frame_ms_spread", f->frame_ms_spread},
-                                     {"peeling_ms", peeled->frame_ms},
-                                     {"bytes_per_pixel", render::plan_of(coloured, o).pipeline.bytes_per_pixel},
-                                     {"reference", "deferred depth peeling with RGB specular"},
-                                     {"rmse_against_rgb", render::compare(f->final_image, with_rgb->final_image, everywhere).all.rmse}}, e));
+      records.push_back(render::with_errors({{"technique", std::string("interlaced-") + (rgb ? "rgb" : "white") + "-" + render::layout_name(l)},
+                                             {"scene", "glass_room_specular"},
+                                             {"backend", backend},
+                                             {"settings", {{"specular", rgb ? "rgb" : "white"}, {"layout", render::layout_name(l)},
+                                                           {"lights", coloured.lights.size()}, {"width", o.width}, {"height", o.height},
+                                                           {"frames", f->frames}}},
+                                             {"frame_ms", f->frame_ms},
+                                             {"frame_ms_spread", f->frame_ms_spread},
+                                             {"peeling_ms", peeled->frame_ms},
+                                             {"bytes_per_pixel", render::plan_of(coloured, o).pipeline.bytes_per_pixel},
+                                             {"reference", "deferred depth peeling with RGB specular"},
+                                             {"rmse_against_rgb", render::compare(f->final_image, with_rgb->final_image, everywhere).all.rmse}}, e));
     }
   }
   return records;
@@ -572,6 +555,16 @@ result<json> paired_records(const scene& room, const render::options& base, cons
         !ok)
       return failure{ok.error()};
   }
+  // Temporal interlacing in the compact layout (24 bytes a pixel) against peeling, at 2 lights.
+  paired_side temporal = with(T::interlaced, S::transparent, true);
+  temporal.o.temporal = temporal.o.reconstruct = true;
+  temporal.o.layout = render::gbuffer_layout::compact;
+  temporal.settings["temporal"] = true;
+  temporal.settings["layout"] = "compact";
+  if (auto ok = measure("peeling / temporal interlaced, transparent shadows", 2, temporal,
+                        with(T::peeling, S::transparent, true), "at_least", 1.6, true);
+      !ok)
+    return failure{ok.error()};
   if (auto ok = measure("refraction / none, no lights", 0, with(T::interlaced, S::off, false), with(T::interlaced, S::off, true),
                         "at_most", 1.05, true);
       !ok)
@@ -802,8 +795,7 @@ int bench(std::vector<std::string> args) {
         const render::leaks l = render::count_leaks(references.at(key(dc)), s, o);
         leak_pixels = {{"foreground_accepted", l.foreground_accepted}, {"background_rejected", l.background_rejected}};
       }
-      std::vector<bool> glass(ref.gbuffer[0].size());
-      for (std::size_t i = 0; i < glass.size(); ++i) glass[i] = decode(format::rgba8, ref.gbuffer[0][i]).w < 1.0f;
+      const std::vector<bool> glass = render::glass_pixels(ref);
       const render::image_error e = render::compare(f->final_image, ref.final_image, glass);
       const auto [targets, bytes] = targets_and_bytes(c.method);
       // The memory of the plan's targets at this size (the interlaced pipeline's plan; others by their tables).
@@ -820,24 +812,24 @@ int bench(std::vector<std::string> args) {
         std::fprintf(stderr, "dstrans bench: the copies on %s: %s\n", backend.c_str(), limit.error().c_str());
         return 1;
       }
-      json rec = with_errors({{"technique", render::technique_name(c.method)},
-                              {"scene", c.scene},
-                              {"backend", backend},
-                              {"settings", {{"lights", c.lights}, {"shadows", render::shadow_name(c.shadows)}, {"refraction", c.refraction},
-                                            {"width", base.width}, {"height", base.height}, {"shadow_size", base.shadow_size},
-                                            {"frames", f->frames},
-                                            {"forced", c.force.names()}}},
-                              {"effects", render::plan_of(s, options_of(c.method)).on.names()},
-                              {"memory_bytes", c.method == T::interlaced ? json(memory) : json(nullptr)},
-                              {"frame_ms", f->frame_ms},
-                              {"frame_ms_spread", f->frame_ms_spread},
-                              {"pass_ms", f->pass_ms},
-                              {"pass_bytes", moved},
-                              {"limit_ms", *limit},
-                              {"bytes_per_pixel", bytes},
-                              {"render_targets", targets},
-                              {"reference", "deferred depth peeling"},
-                              {"leak_pixels", leak_pixels}}, e);
+      json rec = render::with_errors({{"technique", render::technique_name(c.method)},
+                                      {"scene", c.scene},
+                                      {"backend", backend},
+                                      {"settings", {{"lights", c.lights}, {"shadows", render::shadow_name(c.shadows)}, {"refraction", c.refraction},
+                                                    {"width", base.width}, {"height", base.height}, {"shadow_size", base.shadow_size},
+                                                    {"frames", f->frames},
+                                                    {"forced", c.force.names()}}},
+                                      {"effects", render::plan_of(s, options_of(c.method)).on.names()},
+                                      {"memory_bytes", c.method == T::interlaced ? json(memory) : json(nullptr)},
+                                      {"frame_ms", f->frame_ms},
+                                      {"frame_ms_spread", f->frame_ms_spread},
+                                      {"pass_ms", f->pass_ms},
+                                      {"pass_bytes", moved},
+                                      {"limit_ms", *limit},
+                                      {"bytes_per_pixel", bytes},
+                                      {"render_targets", targets},
+                                      {"reference", "deferred depth peeling"},
+                                      {"leak_pixels", leak_pixels}}, e);
       results.push_back(rec);
       std::fprintf(stderr, "%s[%zu/%zu] %s: %.2f ms, RMSE %.2f%s", tty ? "\r\033[K" : "", k + 1, configs.size(), key(c).c_str(),
                    f->frame_ms, e.all.rmse, tty ? "" : "\n");
@@ -867,6 +859,7 @@ int bench(std::vector<std::string> args) {
         std::fprintf(stderr, "dstrans bench: %s\n", loaded->error().c_str());
         return 1;
       }
+    std::vector<std::pair<std::string, std::string>> strips;  // the temporal benchmark's crops, a PNG a backend
     for (const std::string& b : {backend, std::string(backend == "gl" ? "vk" : "gl")}) {
       auto other = b == backend ? result<std::unique_ptr<gpu>>(failure{"unused"}) : open_gpu(b, device);
       if (b != backend && !other) {
@@ -881,6 +874,15 @@ int bench(std::vector<std::string> args) {
 #endif
 #ifdef DSTRANS_HAVE_VK
         if (on.vk) return render::run_vk(*on.vk, s, o, pass_shaders());
+#endif
+        return failure{"no backend"};
+      };
+      auto draw_sequence = [&](const std::vector<scene>& frames, const render::options& o) -> result<std::vector<render::frame>> {
+#ifdef DSTRANS_HAVE_GL
+        if (on.gl) return render::run_gl_sequence(frames, o, pass_shaders());
+#endif
+#ifdef DSTRANS_HAVE_VK
+        if (on.vk) return render::run_vk_sequence(*on.vk, frames, o, pass_shaders());
 #endif
         return failure{"no backend"};
       };
@@ -926,6 +928,13 @@ int bench(std::vector<std::string> args) {
         return 1;
       }
       for (const json& r : *specular) results.push_back(r);
+      auto temporal = temporal_records(with_lights(scenes.at("glass_room"), fixed), shadowed, quick ? 6 : 24, b, draw_sequence);
+      if (!temporal) {
+        std::fprintf(stderr, "dstrans bench: temporal interlacing on %s: %s\n", b.c_str(), temporal.error().c_str());
+        return 1;
+      }
+      for (const json& r : temporal->records) results.push_back(r);
+      strips.push_back({"temporal_" + b + ".png", render::png_bytes(temporal->strip)});
     }
     for (json& r : results) {
       const auto& [name, driver] = ran_on.at(r["backend"].get<std::string>());
@@ -933,6 +942,8 @@ int bench(std::vector<std::string> args) {
       r["driver"] = driver;
     }
     auto written = dir->add("results.json", results.dump(1) + "\n");
+    for (const auto& [name, png] : strips)
+      if (written) written = dir->add(name, png);
     // report.md and the plot come from results.json alone (bench/report.py, matplotlib); Debian's python3
     // has matplotlib, so it is preferred over another python3 earlier on the PATH. It runs from an
     // argument vector, so no path is ever read by a shell.

@@ -249,4 +249,15 @@ image_error compare(const image& test, const image& reference, const std::vector
   return {figures(all), figures(masked)};
 }
 
+nlohmann::ordered_json with_errors(nlohmann::ordered_json record, const image_error& e) {
+  record["rmse"] = e.all.rmse;
+  record["rmse_transparent"] = e.masked.rmse;
+  record["psnr"] = std::isfinite(e.all.psnr) ? nlohmann::ordered_json(e.all.psnr) : nlohmann::ordered_json(nullptr);
+  record["ssim"] = e.all.ssim;
+  record["ssim_transparent"] = e.masked.ssim;
+  record["flip"] = e.all.flip;
+  record["flip_transparent"] = e.masked.flip;
+  return record;
+}
+
 }  // namespace dstrans::render

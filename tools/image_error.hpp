@@ -5,10 +5,13 @@
 //   dstrans::render::image_error e = dstrans::render::compare(test, reference, glass_pixels);
 //   e.all.ssim;     // 1 where the images are equal
 //   e.masked.flip;  // 0 where they are equal, towards 1 as the difference grows more visible
+//   json record = dstrans::render::with_errors({{"technique", "interlaced"}}, e);   // as results.json keeps them
 #pragma once
 
 #include <cmath>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "frame_output.hpp"
 
@@ -41,5 +44,9 @@ struct image_error {
 
 // The figures of `test` against `reference` (the same size) over every pixel and over `mask` (a flag a pixel).
 image_error compare(const image& test, const image& reference, const std::vector<bool>& mask);
+
+// `record` with the figures as results.json keeps them: rmse, psnr (null where infinite), ssim and flip over
+// all pixels, and rmse, ssim and flip over the mask's pixels (glass, hair, smoke) as *_transparent.
+nlohmann::ordered_json with_errors(nlohmann::ordered_json record, const image_error& e);
 
 }  // namespace dstrans::render

@@ -93,6 +93,24 @@ result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shade
   return out;
 }
 
+result<std::vector<frame>> run_gl_sequence(const std::vector<scene>& frames, const options& o, const pass_shaders& shaders) {
+  std::vector<frame> out;
+  if (frames.empty()) return out;
+  auto r = gl::renderer::create(frames.front(), o, shaders);
+  if (!r) return failure{r.error()};
+  for (const scene& s : frames) {
+    const gl::scene_geometry meshes(s);
+    (*r)->render(s.view, [&](const scheduled_pass& pass) { meshes(pass); });
+    const frame_times t = (*r)->times();
+    frame f;
+    f.schedule = t.schedule;
+    summarize({t.pass_ms}, {t.frame_ms}, f);
+    read_back(**r, s, f);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_shaders& shaders) {
   auto r = gl::renderer::create(s, o, shaders);
   if (!r) return failure{r.error()};

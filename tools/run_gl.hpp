@@ -15,6 +15,9 @@ namespace dstrans::render {
 
 // The last of o.frames frames of `s` (times: their medians), with the pass shaders `shaders`.
 result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shaders);
+// One renderer's frames of `frames` in turn (each its own camera and objects; the first describes the
+// scene to the renderer), each read back with its GPU times.
+result<std::vector<frame>> run_gl_sequence(const std::vector<scene>& frames, const options& o, const pass_shaders& shaders);
 // One frame of `s` a call, each with its GPU times, through a renderer the clock keeps (paired.hpp).
 result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_shaders& shaders);
 // Full-screen copies between two RGBA32F textures in the current context (limit.hpp): a size past their 32 MiB

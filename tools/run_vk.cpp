@@ -106,6 +106,26 @@ result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pa
   return out;
 }
 
+result<std::vector<frame>> run_vk_sequence(vk::device& dev, const std::vector<scene>& frames, const options& o,
+                                           const pass_shaders& shaders) {
+  std::vector<frame> out;
+  if (frames.empty()) return out;
+  auto r = vk::renderer::create(dev, frames.front(), o, shaders);
+  if (!r) return failure{r.error()};
+  for (const scene& s : frames) {
+    auto meshes = vk::scene_geometry::create(dev, s);
+    if (!meshes) return failure{meshes.error()};
+    dev.submit([&](VkCommandBuffer cmd) { (*r)->record(cmd, s.view, [&](VkCommandBuffer c, const scheduled_pass& pass) { (**meshes)(c, pass); }); });
+    const frame_times t = (*r)->times();
+    frame f;
+    f.schedule = t.schedule;
+    summarize({t.pass_ms}, {t.frame_ms}, f);
+    if (auto ok = read_back(dev, **r, s, f); !ok) return failure{ok.error()};
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders) {
   auto r = vk::renderer::create(dev, s, o, shaders);
   if (!r) return failure{r.error()};

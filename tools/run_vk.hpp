@@ -17,6 +17,10 @@ namespace dstrans::render {
 
 // The last of o.frames frames of `s` on `dev` (times: their medians), with the pass shaders `shaders`.
 result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);
+// One renderer's frames of `frames` on `dev` in turn (each its own camera and objects; the first describes
+// the scene to the renderer), each read back with its GPU times.
+result<std::vector<frame>> run_vk_sequence(vk::device& dev, const std::vector<scene>& frames, const options& o,
+                                           const pass_shaders& shaders);
 // One frame of `s` a call on `dev`, each with its GPU times, through a renderer the clock keeps (paired.hpp);
 // `dev` outlives the clock.
 result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);

@@ -29,13 +29,14 @@ void dst_other_around(ivec2 pixel, out ivec2 at[3], out vec3 weights) {
   }
 }
 
-dst_surface dst_spatial_other(ivec2 pixel) {
+void dst_spatial_layer(ivec2 pixel, out dst_surface r, out dst_light_sample light) {
   ivec2 at[3];
   vec3 w;
   dst_other_around(pixel, at, w);
-  dst_surface p = dst_gbuffer_read(dst_interlace_partner(pixel, frame.size.xy));
+  ivec2 partner = dst_interlace_partner(pixel, frame.size.xy);
+  dst_surface p = dst_gbuffer_read(partner);
   dst_surface a = dst_gbuffer_read(at[0]), b = dst_gbuffer_read(at[1]), c = dst_gbuffer_read(at[2]);
-  dst_surface r = p;
+  r = p;
   vec4 colour = dst_reconstruct(vec4(p.diffuse, p.alpha), vec4(a.diffuse, a.alpha), vec4(b.diffuse, b.alpha),
                                 vec4(c.diffuse, c.alpha), w);
   vec4 shape = dst_reconstruct(vec4(p.normal, p.depth), vec4(a.normal, a.depth), vec4(b.normal, b.depth),
@@ -48,31 +49,27 @@ dst_surface dst_spatial_other(ivec2 pixel) {
   r.depth = shape.w;
   r.spec_intensity = shine.x;
   r.spec_power = shine.y;
-  return r;
-}
-
-dst_light_sample dst_spatial_other_light(ivec2 pixel) {
-  ivec2 at[3];
-  vec3 w;
-  dst_other_around(pixel, at, w);
-  dst_light_sample p = dst_light_read(dst_interlace_partner(pixel, frame.size.xy));
-  dst_light_sample a = dst_light_read(at[0]), b = dst_light_read(at[1]), c = dst_light_read(at[2]);
-  dst_light_sample r;
-  r.light = dst_reconstruct(vec4(p.light, 0.0f), vec4(a.light, 0.0f), vec4(b.light, 0.0f), vec4(c.light, 0.0f), w).xyz;
-  r.specular = dst_reconstruct(vec4(p.specular, 0.0f), vec4(a.specular, 0.0f), vec4(b.specular, 0.0f), vec4(c.specular, 0.0f), w).xyz;
-  return r;
+  dst_light_sample lp = dst_light_read(partner);
+  dst_light_sample la = dst_light_read(at[0]), lb = dst_light_read(at[1]), lc = dst_light_read(at[2]);
+  light.light = dst_reconstruct(vec4(lp.light, 0.0f), vec4(la.light, 0.0f), vec4(lb.light, 0.0f), vec4(lc.light, 0.0f), w).xyz;
+  light.specular =
+      dst_reconstruct(vec4(lp.specular, 0.0f), vec4(la.specular, 0.0f), vec4(lb.specular, 0.0f), vec4(lc.specular, 0.0f), w).xyz;
 }
 #else
-dst_surface dst_spatial_other(ivec2 pixel) { return dst_gbuffer_read(dst_interlace_partner(pixel, frame.size.xy)); }
-dst_light_sample dst_spatial_other_light(ivec2 pixel) { return dst_light_read(dst_interlace_partner(pixel, frame.size.xy)); }
+void dst_spatial_layer(ivec2 pixel, out dst_surface r, out dst_light_sample light) {
+  ivec2 partner = dst_interlace_partner(pixel, frame.size.xy);
+  r = dst_gbuffer_read(partner);
+  light = dst_light_read(partner);
+}
 #endif
 
 #ifdef DST_TEMPORAL
 // The interlace phase alternates, so where the camera stood still the previous frame stored at this pixel
-// the layer this frame does not. Where the other layer of a pixel comes from: 0, the spatial
-// reconstruction; 1, the previous frame's sample at `at`; 2, nowhere: no glass lies in front of this
+// the layer this frame does not. Where the other layer of a pixel `here` comes from: 0, the spatial
+// reconstruction; 1, the previous frame's sample `h` at `at`; 2, nowhere: no glass lies in front of this
 // pixel's opaque surface, which is then its own other layer.
-// - A pixel that keeps glass this frame and holds an opaque surface has no glass in front of it.
+// - A pixel that keeps glass this frame and holds an opaque surface has no glass in front of it, nor has
+//   one whose other layer's samples beside it show no glass.
 // - The previous frame's sample is taken where it lies on this pixel's ray now (within a pixel) and is the
 //   layer missing here: glass in front of this pixel's opaque surface, where the other layer's samples
 //   beside the pixel show glass (so glass that moved away leaves nothing), or the opaque surface behind
@@ -90,24 +87,29 @@ bool dst_lone_glass(ivec2 pixel, ivec2 step, dst_surface here) {
          !dst_transparent(dst_gbuffer2_read(b).alpha);
 }
 
-int dst_history_at(ivec2 pixel, out ivec2 at) {
+int dst_history_at(ivec2 pixel, dst_surface here, out ivec2 at, out dst_surface h) {
   at = pixel;
+  h = here;
   ivec2 size = frame.size.xy;
-  dst_surface here = dst_gbuffer_read(pixel);
   bool want_glass = !dst_transparent(here.alpha);
   if (want_glass && dst_interlace_keep(pixel + frame.interlace.xy, size)) return 2;
   if (frame.interlace.z == 0) return 0;
   ivec2 partner = dst_interlace_partner(pixel, size);
   ivec2 beyond = clamp(2 * pixel - partner, ivec2(0), size - 1);
   dst_surface p = dst_gbuffer_read(partner);
-  if (want_glass && !dst_transparent(p.alpha) && !dst_transparent(dst_gbuffer_read(beyond).alpha))
-    return dst_lone_glass(pixel, pixel - partner, here) ? 1 : 0;
+  // No glass beside this opaque surface: nothing in front of it (whatever the other layer, the compose
+  // shades the surface alone), unless the previous frame kept a sliver of glass here.
+  if (want_glass && !dst_transparent(p.alpha) && !dst_transparent(dst_gbuffer_read(beyond).alpha)) {
+    if (!dst_lone_glass(pixel, pixel - partner, here)) return 2;
+    h = dst_gbuffer2_read(pixel);
+    return 1;
+  }
   vec4 before = frame.prev_view_proj * vec4(dst_world_position(pixel, p.depth), 1.0f);
   if (!(before.w > 0.0f)) return 0;
   vec2 w = dst_ndc_window(before.xy / before.w, size);
   if (any(lessThan(w, vec2(0.0f))) || any(greaterThanEqual(w, vec2(size)))) return 0;
   at = ivec2(w);
-  dst_surface h = dst_gbuffer2_read(at);
+  h = dst_gbuffer2_read(at);
   vec4 world = frame.prev_inv_view_proj * vec4(dst_pixel_ndc(at, size), h.depth, 1.0f);
   vec4 now = frame.view_proj * vec4(world.xyz / world.w, 1.0f);
   if (!(now.w > 0.0f) || distance(dst_ndc_window(now.xy / now.w, size), vec2(pixel) + 0.5f) > 1.0f) return 0;
@@ -117,17 +119,15 @@ int dst_history_at(ivec2 pixel, out ivec2 at) {
   return want_glass && frame.interlace.w == 1 && at == pixel && same_surface ? 2 : 0;
 }
 
-dst_surface dst_other(ivec2 pixel) {
+void dst_other_layer(ivec2 pixel, dst_surface here, out dst_surface s, out dst_light_sample light) {
   ivec2 at;
-  int from = dst_history_at(pixel, at);
-  return from == 1 ? dst_gbuffer2_read(at) : from == 2 ? dst_gbuffer_read(pixel) : dst_spatial_other(pixel);
-}
-dst_light_sample dst_other_light(ivec2 pixel) {
-  ivec2 at;
-  int from = dst_history_at(pixel, at);
-  return from == 1 ? dst_light2_read(at) : from == 2 ? dst_light_read(pixel) : dst_spatial_other_light(pixel);
+  int from = dst_history_at(pixel, here, at, s);
+  if (from == 1) light = dst_light2_read(at);
+  else if (from == 2) light = dst_light_read(pixel);
+  else dst_spatial_layer(pixel, s, light);
 }
 #else
-dst_surface dst_other(ivec2 pixel) { return dst_spatial_other(pixel); }
-dst_light_sample dst_other_light(ivec2 pixel) { return dst_spatial_other_light(pixel); }
+void dst_other_layer(ivec2 pixel, dst_surface here, out dst_surface s, out dst_light_sample light) {
+  dst_spatial_layer(pixel, s, light);
+}
 #endif
