@@ -26,7 +26,7 @@ int texture(int x, int y, int c) {
 }
 // +amount or -amount, by a hash of the pixel.
 int noise(int x, int y, int c, int amount) {
-  const std::uint32_t h = std::uint32_t(x * 73856093) ^ std::uint32_t(y * 19349663) ^ std::uint32_t(c * 83492791);
+  const std::uint32_t h = std::uint32_t(x) * 73856093u ^ std::uint32_t(y) * 19349663u ^ std::uint32_t(c) * 83492791u;
   return (h * 2654435761u >> 16) & 1 ? amount : -amount;
 }
 double mean(const std::vector<double>& v) {
