@@ -73,7 +73,9 @@ void dst_spatial_layer(ivec2 pixel, out dst_surface r, out dst_light_sample ligh
 // - The previous frame's sample is taken where it lies on this pixel's ray now (within a pixel) and is the
 //   layer missing here: glass in front of this pixel's opaque surface, where the other layer's samples
 //   beside the pixel show glass (so glass that moved away leaves nothing), or the opaque surface behind
-//   this pixel's glass. The previous frame's pixel is found by reprojecting the partner's depth.
+//   this pixel's glass. The previous frame's pixel is found by reprojecting the depth of the other layer's
+//   samples on either side along the interlace (at an edge, one of them shows the pixel's surface), and the
+//   sample nearer the ray is taken.
 // - Where the camera has not moved, a pixel that kept glass in the previous frame and held this same
 //   opaque surface had none in front of it (glass that moved in shows from the next frame); and glass it
 //   kept with none two pixels either side along the interlace is a sliver one pixel thin, which this frame
@@ -87,6 +89,31 @@ bool dst_lone_glass(ivec2 pixel, ivec2 step, dst_surface here) {
          !dst_transparent(dst_gbuffer2_read(b).alpha);
 }
 
+// The previous frame's sample of the layer `glass` asks for, nearest to where the surface at `depth` on
+// `pixel`'s ray lay then: the nearest pixel, or when that kept the other layer, its neighbour along the
+// interlace `step` on the point's side. The sample's depth `h` is its depth now; the result is how far
+// (in pixels) the sample lies from the pixel's ray now, 2 where there is none.
+float dst_history_sample(ivec2 pixel, float depth, bool glass, ivec2 step, out ivec2 at, out dst_surface h) {
+  ivec2 size = frame.size.xy;
+  at = pixel;
+  h = dst_surface_zero();
+  vec4 before = frame.prev_view_proj * vec4(dst_world_position(pixel, depth), 1.0f);
+  if (!(before.w > 0.0f)) return 2.0f;
+  vec2 w = dst_ndc_window(before.xy / before.w, size);
+  if (any(lessThan(w, vec2(0.0f))) || any(greaterThanEqual(w, vec2(size)))) return 2.0f;
+  at = ivec2(w);
+  h = dst_gbuffer2_read(at);
+  if (dst_transparent(h.alpha) != glass) {
+    at = clamp(at + (dot(w - vec2(at) - 0.5f, vec2(step)) >= 0.0f ? step : -step), ivec2(0), size - 1);
+    h = dst_gbuffer2_read(at);
+  }
+  vec4 world = frame.prev_inv_view_proj * vec4(dst_pixel_ndc(at, size), h.depth, 1.0f);
+  vec4 now = frame.view_proj * vec4(world.xyz / world.w, 1.0f);
+  if (!(now.w > 0.0f) || dst_transparent(h.alpha) != glass) return 2.0f;
+  h.depth = now.z / now.w;
+  return distance(dst_ndc_window(now.xy / now.w, size), vec2(pixel) + 0.5f);
+}
+
 int dst_history_at(ivec2 pixel, dst_surface here, out ivec2 at, out dst_surface h) {
   at = pixel;
   h = here;
@@ -96,27 +123,30 @@ int dst_history_at(ivec2 pixel, dst_surface here, out ivec2 at, out dst_surface 
   if (frame.interlace.z == 0) return 0;
   ivec2 partner = dst_interlace_partner(pixel, size);
   ivec2 beyond = clamp(2 * pixel - partner, ivec2(0), size - 1);
-  dst_surface p = dst_gbuffer_read(partner);
+  dst_surface p = dst_gbuffer_read(partner), q = dst_gbuffer_read(beyond);
   // No glass beside this opaque surface: nothing in front of it (whatever the other layer, the compose
   // shades the surface alone), unless the previous frame kept a sliver of glass here.
-  if (want_glass && !dst_transparent(p.alpha) && !dst_transparent(dst_gbuffer_read(beyond).alpha)) {
+  if (want_glass && !dst_transparent(p.alpha) && !dst_transparent(q.alpha)) {
     if (!dst_lone_glass(pixel, pixel - partner, here)) return 2;
     h = dst_gbuffer2_read(pixel);
     return 1;
   }
-  vec4 before = frame.prev_view_proj * vec4(dst_world_position(pixel, p.depth), 1.0f);
-  if (!(before.w > 0.0f)) return 0;
-  vec2 w = dst_ndc_window(before.xy / before.w, size);
-  if (any(lessThan(w, vec2(0.0f))) || any(greaterThanEqual(w, vec2(size)))) return 0;
-  at = ivec2(w);
-  h = dst_gbuffer2_read(at);
-  vec4 world = frame.prev_inv_view_proj * vec4(dst_pixel_ndc(at, size), h.depth, 1.0f);
-  vec4 now = frame.view_proj * vec4(world.xyz / world.w, 1.0f);
-  if (!(now.w > 0.0f) || distance(dst_ndc_window(now.xy / now.w, size), vec2(pixel) + 0.5f) > 1.0f) return 0;
-  float depth = now.z / now.w;
-  if (dst_transparent(h.alpha) == want_glass) return (want_glass ? depth < here.depth : depth > here.depth) ? 1 : 0;
-  bool same_surface = abs(h.depth - here.depth) <= 1e-5f * here.depth;
-  return want_glass && frame.interlace.w == 1 && at == pixel && same_surface ? 2 : 0;
+  if (frame.interlace.w == 1) {
+    h = dst_gbuffer2_read(pixel);
+    if (dst_transparent(h.alpha) == want_glass) return (want_glass ? h.depth < here.depth : h.depth > here.depth) ? 1 : 0;
+    return want_glass && abs(h.depth - here.depth) <= 1e-5f * here.depth ? 2 : 0;
+  }
+  ivec2 step = abs(pixel - partner), at_q;
+  dst_surface h_q;
+  float off = dst_history_sample(pixel, p.depth, want_glass, step, at, h);
+  float off_q = dst_history_sample(pixel, q.depth, want_glass, step, at_q, h_q);
+  if (off_q < off) {
+    off = off_q;
+    at = at_q;
+    h = h_q;
+  }
+  if (!(off < 1.0f)) return 0;
+  return (want_glass ? h.depth < here.depth : h.depth > here.depth) ? 1 : 0;
 }
 
 void dst_other_layer(ivec2 pixel, dst_surface here, out dst_surface s, out dst_light_sample light) {
