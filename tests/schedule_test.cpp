@@ -203,20 +203,33 @@ TEST_CASE("temporal interlacing alternates every predicate's phase and hands eac
   const render::frame_plan p = render::plan_of(room, o);
   const render::frame_block first = render::sequence_frame(render::camera_frame(room, o), {}, 0, p, o);
   CHECK(first.interlace == glm::ivec4(0, 0, 0, 0));  // no previous frame
-  CHECK(first.prev_view_proj == first.view_proj);
-  CHECK(first.prev_inv_view_proj == first.inv_view_proj);
+  CHECK(first.to_previous == glm::mat4(1.0f));
+  CHECK(first.from_previous == glm::mat4(1.0f));
   const render::frame_block still = render::sequence_frame(render::camera_frame(room, o), first, 1, p, o);
   CHECK(still.interlace == glm::ivec4(0, 1, 1, 1));
   camera moved = room.view;
   moved.position.x += 0.1f;
   const render::frame_block next = render::sequence_frame(render::camera_frame(moved, room.ambient, o), still, 2, p, o);
   CHECK(next.interlace == glm::ivec4(0, 0, 1, 0));
-  CHECK(next.prev_view_proj == still.view_proj);
-  CHECK(next.prev_inv_view_proj == still.inv_view_proj);
   CHECK(next.view_proj != still.view_proj);
+  // A world point's clip position now, taken to the previous frame, is where that frame's camera saw it;
+  // and back again.
+  const glm::vec4 world(0.3f, 0.9f, -0.4f, 1.0f);
+  const glm::vec4 now = next.view_proj * world, before = still.view_proj * world;
+  const glm::vec4 to = next.to_previous * now, back = next.from_previous * before;
+  for (int k = 0; k < 3; ++k) {
+    CHECK(to[k] / to.w == Approx(before[k] / before.w).margin(1e-5));
+    CHECK(back[k] / back.w == Approx(now[k] / now.w).margin(1e-5));
+  }
+  for (const render::frame_block* f : {&still, &first})
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) {
+        CHECK(f->to_previous[c][r] == Approx(c == r ? 1.0f : 0.0f).margin(1e-6));
+        CHECK(f->from_previous[c][r] == Approx(c == r ? 1.0f : 0.0f).margin(1e-6));
+      }
   // Without temporal interlacing a frame is the camera's as it is.
   o.temporal = false;
   const render::frame_block plain = render::sequence_frame(render::camera_frame(moved, room.ambient, o), still, 2, render::plan_of(room, o), o);
   CHECK(plain.interlace == glm::ivec4(0));
-  CHECK(plain.prev_view_proj == plain.view_proj);
+  CHECK(plain.to_previous == glm::mat4(1.0f));
 }

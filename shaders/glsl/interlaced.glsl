@@ -97,7 +97,7 @@ float dst_history_sample(ivec2 pixel, float depth, bool glass, ivec2 step, out i
   ivec2 size = frame.size.xy;
   at = pixel;
   h = dst_surface_zero();
-  vec4 before = frame.prev_view_proj * vec4(dst_world_position(pixel, depth), 1.0f);
+  vec4 before = frame.to_previous * vec4(dst_pixel_ndc(pixel, size), depth, 1.0f);
   if (!(before.w > 0.0f)) return 2.0f;
   vec2 w = dst_ndc_window(before.xy / before.w, size);
   if (any(lessThan(w, vec2(0.0f))) || any(greaterThanEqual(w, vec2(size)))) return 2.0f;
@@ -107,8 +107,7 @@ float dst_history_sample(ivec2 pixel, float depth, bool glass, ivec2 step, out i
     at = clamp(at + (dot(w - vec2(at) - 0.5f, vec2(step)) >= 0.0f ? step : -step), ivec2(0), size - 1);
     h = dst_gbuffer2_read(at);
   }
-  vec4 world = frame.prev_inv_view_proj * vec4(dst_pixel_ndc(at, size), h.depth, 1.0f);
-  vec4 now = frame.view_proj * vec4(world.xyz / world.w, 1.0f);
+  vec4 now = frame.from_previous * vec4(dst_pixel_ndc(at, size), h.depth, 1.0f);
   if (!(now.w > 0.0f) || dst_transparent(h.alpha) != glass) return 2.0f;
   h.depth = now.z / now.w;
   return distance(dst_ndc_window(now.xy / now.w, size), vec2(pixel) + 0.5f);

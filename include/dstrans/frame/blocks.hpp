@@ -22,8 +22,8 @@ struct dst_frame_data {
   vec4 params;          // x: refraction strength in pixels, y: shadow bias (a fraction of the receiver's
                         // distance from the light), z: the light whose shadow map hair reads (-1: none),
                         // w: k of the k-buffer
-  mat4 prev_view_proj;     // the previous frame's view_proj (temporal interlacing; else view_proj)
-  mat4 prev_inv_view_proj; // and its inverse
+  mat4 to_previous;     // this frame's clip space to the previous frame's (temporal interlacing; else identity)
+  mat4 from_previous;   // and back: the previous frame's clip space to this frame's
   ivec4 interlace;      // xy: added to a pixel before the interlace predicate (this frame's phase), z: 1
                         // when the second G-buffer holds the previous frame's, w: 1 when that frame was
                         // seen with this view_proj

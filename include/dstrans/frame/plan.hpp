@@ -554,8 +554,7 @@ inline frame_block camera_frame(const camera& c, glm::vec3 ambient, const option
   f.ambient = glm::vec4(ambient, 0.0f);
   f.size = {o.width, o.height, o.shadow_size, o.shadow_size};
   f.params = {o.refraction, o.shadow_bias, -1.0f, float(o.kbuffer_k)};
-  f.prev_view_proj = f.view_proj;
-  f.prev_inv_view_proj = f.inv_view_proj;
+  f.to_previous = f.from_previous = glm::mat4(1.0f);
   return f;
 }
 
@@ -568,9 +567,9 @@ inline frame_block sequence_frame(frame_block f, const frame_block& previous, st
                                   const options& o) {
   if (!p.temporal) return f;
   f.interlace = glm::ivec4(interlace_phase(o.interlace, index), index > 0 ? 1 : 0, index > 0 && previous.view_proj == f.view_proj ? 1 : 0);
-  if (index > 0) {
-    f.prev_view_proj = previous.view_proj;
-    f.prev_inv_view_proj = previous.inv_view_proj;
+  if (index > 0) {  // composed in double: a still camera's is the identity within float's rounding
+    f.to_previous = glm::mat4(glm::dmat4(previous.view_proj) * glm::inverse(glm::dmat4(f.view_proj)));
+    f.from_previous = glm::mat4(glm::dmat4(f.view_proj) * glm::inverse(glm::dmat4(previous.view_proj)));
   }
   return f;
 }
