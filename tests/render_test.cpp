@@ -1684,7 +1684,7 @@ TEST_CASE("edge-aware reconstruction returns a constant layer exactly and does n
 }
 
 TEST_CASE("temporal interlacing: a still camera's second frame is depth peeling's on glass, its first the spatial one's",
-          "[temporal][render][lavapipe_leak]") {
+          "[temporal][render]") {
   const scene room = example("glass_room.json");
   for (backend b : backends)
     for (render::predicate p : {render::predicate::rows, render::predicate::columns, render::predicate::checker}) {
@@ -1806,7 +1806,7 @@ TEST_CASE("the temporal benchmark: a record a path and method, peeling its own r
   CHECK(t->strip.height == 2 * 5 * 18 + 2 * 4);
 }
 
-TEST_CASE("temporal interlacing on GL and Vulkan: the same frames", "[temporal][render][gl][vk][lavapipe_leak]") {
+TEST_CASE("temporal interlacing on GL and Vulkan: the same frames", "[temporal][render][gl][vk]") {
   options o = small(160, 90);
   o.temporal = true;
   o.frames = 2;
