@@ -705,7 +705,7 @@ def write_paths(w, paths):
       "frame), and a pane moving 2 cm a frame under a still camera. Methods: the thesis's (partner fetch, Table "
       "3.1's layout), spatial (edge-aware reconstruction, compact layout), temporal (the rows that keep glass "
       "alternate every frame; the other layer from the previous frame where it is still on the pixel's ray, else "
-      "spatial; compact layout) and depth peeling in both layouts. Every frame after the first is compared with "
+      "the partner's; compact layout) and depth peeling in both layouts. Every frame after the first is compared with "
       "peeling's of the same frame in the method's layout on the glass peeling's first layer holds: the mean and "
       "the worst frame; the column after them is against Table 3.1's peeling (what the compact layout's normals "
       "add). Frame change: RMSE on "
@@ -732,8 +732,8 @@ def write_paths(w, paths):
           "time (untimed in pairs here; the paired table has the ratio with its interval) and %d bytes a pixel." % (
               backend, ", ".join(met) if met else "no path", min(r["frame_ms"] / r["peeling_ms"] for r in temporal),
               max(r["frame_ms"] / r["peeling_ms"] for r in temporal), temporal[0]["bytes_per_pixel"]))
+        w("![the last frame of each path on %s](temporal_%s.png)" % (backend, backend))
         w("")
-    w("![the last frame of each path](temporal_%s.png)" % paths[0]["backend"])
 
 
 def plot_sweep(plt, sweep, path):

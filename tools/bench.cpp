@@ -555,9 +555,10 @@ result<json> paired_records(const scene& room, const render::options& base, cons
         !ok)
       return failure{ok.error()};
   }
-  // Temporal interlacing in the compact layout (24 bytes a pixel) against peeling, at 2 lights.
+  // Temporal interlacing in the compact layout (24 bytes a pixel) against peeling, at 2 lights, as the
+  // temporal benchmark draws it (over the partner fetch).
   paired_side temporal = with(T::interlaced, S::transparent, true);
-  temporal.o.temporal = temporal.o.reconstruct = true;
+  temporal.o.temporal = true;
   temporal.o.layout = render::gbuffer_layout::compact;
   temporal.settings["temporal"] = true;
   temporal.settings["layout"] = "compact";

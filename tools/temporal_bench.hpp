@@ -35,7 +35,7 @@ struct temporal_results {
 };
 
 // Each path of temporal_paths drawn by the thesis's method (the partner, Table 3.1's layout), the spatial one
-// (edge-aware reconstruction, compact layout), the temporal one (temporal interlacing over the spatial one,
+// (edge-aware reconstruction, compact layout), the temporal one (temporal interlacing over the partner fetch,
 // compact layout) and depth peeling (in both layouts); each frame after the first against peeling's of the
 // same frame in the method's layout, on the glass peeling's first layer holds: mean and worst errors, the
 // RMSE against Table 3.1's peeling, the frame-to-frame change (on the still path, the flicker), the median
