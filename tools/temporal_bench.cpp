@@ -105,9 +105,10 @@ result<temporal_results> temporal_records(const scene& room, const render::optio
                                           const sequence_draw& draw) {
   temporal_results out{json::array(), {}};
   const auto paths = temporal_paths(room, std::max(frames, 2));
-  const glm::ivec2 tile(base.width / 3, base.height / 3);
-  out.strip = {2 * (4 * tile.x + 6), 2 * int(paths.size()) * tile.y + 2 * int(paths.size() - 1),
-               std::vector<std::uint8_t>(std::size_t(2 * (4 * tile.x + 6)) * std::size_t(2 * int(paths.size()) * tile.y + 2 * int(paths.size() - 1)) * 4, 255)};
+  // Tiles of a third of the image, doubled, with white gaps between them (wider between the methods).
+  const glm::ivec2 tile(base.width / 3, base.height / 3), tiles(int(strip_columns), int(paths.size())), gap(2, 1);
+  const glm::ivec2 strip = 2 * (tiles * tile + (tiles - 1) * gap);
+  out.strip = {strip.x, strip.y, std::vector<std::uint8_t>(std::size_t(strip.x) * std::size_t(strip.y) * 4, 255)};
   for (std::size_t p = 0; p < paths.size(); ++p) {
     const auto& [path, sequence] = paths[p];
     std::vector<std::vector<render::frame>> drawn;
@@ -170,7 +171,7 @@ result<temporal_results> temporal_records(const scene& room, const render::optio
         }
       const glm::ivec2 centre = n ? glm::ivec2(sum / double(n)) : glm::ivec2(base.width, base.height) / 2;
       paste_doubled(out.strip, crop(drawn[k].back().final_image, centre, tile),
-                    {2 * int(k) * (tile.x + 2), 2 * int(p) * (tile.y + 1)});
+                    2 * glm::ivec2(int(k), int(p)) * (tile + gap));
     }
   }
   return out;
