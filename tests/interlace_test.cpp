@@ -92,3 +92,39 @@ TEST_CASE("reconstruction returns a constant layer exactly and adds nothing acro
   CHECK(dst_reconstruct(near, near * 0.5f, far, far, glm::vec3(1.0f, 0.0f, 0.0f)) == glm::vec4(0.75f, 0, 0, 0.75f));
   CHECK(dst_reconstruct(near, far, far, far, glm::vec3(std::nanf(""))) == near);
 }
+
+TEST_CASE("a history sample takes in its neighbours linearly, by distance and only on the same surface", "[interlace][temporal]") {
+  using shader::dst_history_shares;
+  // On the pixel's ray and on the previous frame's pixel centre: the sample alone.
+  CHECK(dst_history_shares(glm::vec2(0.0f), glm::vec2(1.0f)) == glm::vec2(0.0f));
+  // Half a pixel across: half the neighbour; a pixel along: this frame's sample one pixel the other way
+  // is as near, so half; a quarter along: 0.25 / 1.25 of it.
+  CHECK(dst_history_shares(glm::vec2(-0.5f, 1.0f), glm::vec2(1.0f)) == glm::vec2(0.5f, 0.5f));
+  CHECK(dst_history_shares(glm::vec2(0.0f, 0.25f), glm::vec2(1.0f)).y == Approx(0.2f));
+  // Another surface shares nothing, a partly similar one in proportion.
+  CHECK(dst_history_shares(glm::vec2(0.5f, 0.5f), glm::vec2(0.0f)) == glm::vec2(0.0f));
+  CHECK(dst_history_shares(glm::vec2(0.5f, 0.0f), glm::vec2(0.5f, 1.0f)) == glm::vec2(0.25f, 0.0f));
+
+  using shader::dst_surface_mix;
+  surface a = shader::dst_surface_zero(), b = a;
+  a.diffuse = glm::vec3(0.2f);
+  b.diffuse = glm::vec3(0.6f);
+  a.normal = glm::vec3(1, 0, 0);
+  b.normal = glm::vec3(0, 1, 0);
+  a.depth = 0.5f;
+  b.depth = 0.7f;
+  // A gradient comes back where the pixel lies on it; the normal stays a unit vector.
+  const surface m = dst_surface_mix(a, b, 0.25f);
+  CHECK(m.diffuse.x == Approx(0.3f));
+  CHECK(m.depth == Approx(0.55f));
+  CHECK(glm::length(m.normal) == Approx(1.0f));
+  CHECK(m.normal.x > m.normal.y);
+  CHECK(dst_surface_mix(a, b, 0.0f).diffuse == a.diffuse);
+  CHECK(dst_surface_mix(a, b, 1.0f).normal == b.normal);
+  light_sample la = shader::dst_light_sample_zero(), lb = la;
+  lb.light = glm::vec3(1.0f);
+  lb.specular = glm::vec3(0.5f);
+  const light_sample lm = shader::dst_light_mix(la, lb, 0.5f);
+  CHECK(lm.light == glm::vec3(0.5f));
+  CHECK(lm.specular == glm::vec3(0.25f));
+}

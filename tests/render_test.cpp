@@ -1719,7 +1719,8 @@ TEST_CASE("temporal interlacing: a still camera's second frame is depth peeling'
 // Under a moving camera the previous frame's samples lie off the pixels' rays by up to a pixel; they still
 // beat the spatial reconstruction, whose samples lie a pixel away, where they are found on either side of
 // an edge and in either phase (found by the partner's depth alone and in the nearest pixel's phase only,
-// the dolly's first frame is worse than the spatial one's and the mean 0.77 of it).
+// the dolly's first frame is worse than the spatial one's and the mean 0.77 of it) and interpolated with
+// their neighbours (taken alone, the mean is 0.71 of it; 0.68 interpolated).
 TEST_CASE("temporal interlacing under a moving camera: nearer peeling on glass than the spatial reconstruction",
           "[temporal][render][gl]") {
   auto ctx = gl::headless_context::create();
@@ -1751,7 +1752,7 @@ TEST_CASE("temporal interlacing under a moving camera: nearer peeling on glass t
       spatial_sum += s;
     }
   }
-  CHECK(temporal_sum < 0.75 * spatial_sum);
+  CHECK(temporal_sum < 0.7 * spatial_sum);
 }
 
 TEST_CASE("the temporal benchmark's paths move what they say and nothing else", "[temporal][bench]") {

@@ -95,6 +95,46 @@ DST_FN vec4 dst_reconstruct(vec4 partner, vec4 a, vec4 b, vec4 c, vec3 weights) 
 }
 )
 
+// Temporal interlacing's history sample lies off the pixel's ray, and taking it alone copies a gradient
+// (a curved pane's shading) a fraction of a pixel off. So it is interpolated linearly with one sample on
+// each axis, in proportion to how surely that sample shows the same surface (dst_layer_similarity):
+// - across the interlace, with the previous frame's neighbour on the side the reprojected point lies:
+//   offset.x is the point's distance from the history sample's centre (in pixels), and is the share;
+// - along it, with this frame's sample of the same layer on the pixel's other side, one pixel from the
+//   pixel: offset.y is the history sample's distance from the pixel now, and the share a / (1 + a)
+//   weighs two samples a and 1 away (none at 0; half at 1).
+// Offsets beyond a pixel count as one; a NaN offset or similarity shares nothing.
+DSTRANS_SHARED(dst_history_blend,
+DST_FN vec2 dst_history_shares(vec2 offset, vec2 similarity) {
+  vec2 a = abs(offset);
+  vec2 s = similarity;
+  if (isnan(a.x) || isnan(s.x)) s.x = 0.0f;
+  if (isnan(a.y) || isnan(s.y)) s.y = 0.0f;
+  if (isnan(a.x)) a.x = 0.0f;
+  if (isnan(a.y)) a.y = 0.0f;
+  a = min(a, vec2(1.0f));
+  s = clamp(s, vec2(0.0f), vec2(1.0f));
+  return vec2(a.x, a.y / (1.0f + a.y)) * s;
+}
+DST_FN dst_surface dst_surface_mix(dst_surface a, dst_surface b, float t) {
+  dst_surface r = a;
+  r.diffuse = a.diffuse + (b.diffuse - a.diffuse) * t;
+  r.alpha = a.alpha + (b.alpha - a.alpha) * t;
+  vec3 n = a.normal + (b.normal - a.normal) * t;
+  if (dot(n, n) > 0.0f) r.normal = normalize(n);
+  r.spec_intensity = a.spec_intensity + (b.spec_intensity - a.spec_intensity) * t;
+  r.spec_power = a.spec_power + (b.spec_power - a.spec_power) * t;
+  r.depth = a.depth + (b.depth - a.depth) * t;
+  return r;
+}
+DST_FN dst_light_sample dst_light_mix(dst_light_sample a, dst_light_sample b, float t) {
+  dst_light_sample r;
+  r.light = a.light + (b.light - a.light) * t;
+  r.specular = a.specular + (b.specular - a.specular) * t;
+  return r;
+}
+)
+
 namespace dstrans {
 namespace interlace {
 

@@ -66,8 +66,8 @@ void dst_spatial_layer(ivec2 pixel, out dst_surface r, out dst_light_sample ligh
 #ifdef DST_TEMPORAL
 // The interlace phase alternates, so where the camera stood still the previous frame stored at this pixel
 // the layer this frame does not. Where the other layer of a pixel `here` comes from: 0, the spatial
-// reconstruction; 1, the previous frame's sample `h` at `at`; 2, nowhere: no glass lies in front of this
-// pixel's opaque surface, which is then its own other layer.
+// reconstruction; 1, the previous frame's sample (interpolated with its neighbours: dst_history_between);
+// 2, nowhere: no glass lies in front of this pixel's opaque surface, which is then its own other layer.
 // - A pixel that keeps glass this frame and holds an opaque surface has no glass in front of it, nor has
 //   one whose other layer's samples beside it show no glass.
 // - The previous frame's sample is taken where it lies on this pixel's ray now (within a pixel) and is the
@@ -89,33 +89,67 @@ bool dst_lone_glass(ivec2 pixel, ivec2 step, dst_surface here) {
          !dst_transparent(dst_gbuffer2_read(b).alpha);
 }
 
+// The previous frame's sample at `at`, its depth turned into this frame's, and where it lies now (window
+// coordinates); false where it lies behind the camera now.
+bool dst_history_read(ivec2 at, out dst_surface h, out vec2 now) {
+  ivec2 size = frame.size.xy;
+  h = dst_gbuffer2_read(at);
+  vec4 p = frame.from_previous * vec4(dst_pixel_ndc(at, size), h.depth, 1.0f);
+  now = vec2(0.0f);
+  if (!(p.w > 0.0f)) return false;
+  h.depth = p.z / p.w;
+  now = dst_ndc_window(p.xy / p.w, size);
+  return true;
+}
+
 // The previous frame's sample of the layer `glass` asks for, nearest to where the surface at `depth` on
 // `pixel`'s ray lay then: the nearest pixel, or when that kept the other layer, its neighbour along the
-// interlace `step` on the point's side. The sample's depth `h` is its depth now; the result is how far
-// (in pixels) the sample lies from the pixel's ray now, 2 where there is none.
-float dst_history_sample(ivec2 pixel, float depth, bool glass, ivec2 step, out ivec2 at, out dst_surface h) {
+// interlace `step` on the point's side. The sample's depth `h` is its depth now; `offset` says where it
+// lies (dst_history_shares: x across the interlace then, y along it now); the result is how far (in
+// pixels) the sample lies from the pixel's ray now, 2 where there is none.
+float dst_history_sample(ivec2 pixel, float depth, bool glass, ivec2 step, out ivec2 at, out dst_surface h,
+                         out vec2 offset) {
   ivec2 size = frame.size.xy;
   at = pixel;
   h = dst_surface_zero();
+  offset = vec2(0.0f);
   vec4 before = frame.to_previous * vec4(dst_pixel_ndc(pixel, size), depth, 1.0f);
   if (!(before.w > 0.0f)) return 2.0f;
   vec2 w = dst_ndc_window(before.xy / before.w, size);
   if (any(lessThan(w, vec2(0.0f))) || any(greaterThanEqual(w, vec2(size)))) return 2.0f;
   at = ivec2(w);
-  h = dst_gbuffer2_read(at);
-  if (dst_transparent(h.alpha) != glass) {
+  if (dst_transparent(dst_gbuffer2_read(at).alpha) != glass)
     at = clamp(at + (dot(w - vec2(at) - 0.5f, vec2(step)) >= 0.0f ? step : -step), ivec2(0), size - 1);
-    h = dst_gbuffer2_read(at);
-  }
-  vec4 now = frame.from_previous * vec4(dst_pixel_ndc(at, size), h.depth, 1.0f);
-  if (!(now.w > 0.0f) || dst_transparent(h.alpha) != glass) return 2.0f;
-  h.depth = now.z / now.w;
-  return distance(dst_ndc_window(now.xy / now.w, size), vec2(pixel) + 0.5f);
+  vec2 now;
+  if (!dst_history_read(at, h, now) || dst_transparent(h.alpha) != glass) return 2.0f;
+  offset = vec2(dot(w - vec2(at) - 0.5f, vec2(step.yx)), dot(now - vec2(pixel) - 0.5f, vec2(step)));
+  return distance(now, vec2(pixel) + 0.5f);
 }
 
-int dst_history_at(ivec2 pixel, dst_surface here, out ivec2 at, out dst_surface h) {
-  at = pixel;
+// The history sample `h` (with its light) interpolated with its neighbour across the interlace in the
+// previous frame and with this frame's sample of the same layer on the pixel's other side along it.
+void dst_history_between(ivec2 pixel, ivec2 at, ivec2 step, vec2 offset, inout dst_surface h, inout dst_light_sample light) {
+  ivec2 size = frame.size.xy;
+  ivec2 across = clamp(at + (offset.x >= 0.0f ? step.yx : -step.yx), ivec2(0), size - 1);
+  ivec2 along = clamp(pixel - (offset.y >= 0.0f ? step : -step), ivec2(0), size - 1);
+  dst_surface a, b = dst_gbuffer_read(along);
+  vec2 now;
+  float same_a = dst_history_read(across, a, now) ? dst_layer_similarity(h.depth, h.normal, h.alpha, a.depth, a.normal, a.alpha) : 0.0f;
+  vec2 share = dst_history_shares(offset, vec2(same_a, dst_layer_similarity(h.depth, h.normal, h.alpha, b.depth, b.normal, b.alpha)));
+  if (share.x > 0.0f) {
+    h = dst_surface_mix(h, a, share.x);
+    light = dst_light_mix(light, dst_light2_read(across), share.x);
+  }
+  if (share.y > 0.0f) {
+    h = dst_surface_mix(h, b, share.y);
+    light = dst_light_mix(light, dst_light_read(along), share.y);
+  }
+}
+
+// Where the other layer of `pixel` comes from (see above), with the sample `h` and its light.
+int dst_history_at(ivec2 pixel, dst_surface here, out dst_surface h, out dst_light_sample light) {
   h = here;
+  light = dst_light_read(pixel);
   ivec2 size = frame.size.xy;
   bool want_glass = !dst_transparent(here.alpha);
   if (want_glass && dst_interlace_keep(pixel + frame.interlace.xy, size)) return 2;
@@ -128,32 +162,34 @@ int dst_history_at(ivec2 pixel, dst_surface here, out ivec2 at, out dst_surface 
   if (want_glass && !dst_transparent(p.alpha) && !dst_transparent(q.alpha)) {
     if (!dst_lone_glass(pixel, pixel - partner, here)) return 2;
     h = dst_gbuffer2_read(pixel);
+    light = dst_light2_read(pixel);
     return 1;
   }
   if (frame.interlace.w == 1) {
     h = dst_gbuffer2_read(pixel);
+    light = dst_light2_read(pixel);
     if (dst_transparent(h.alpha) == want_glass) return (want_glass ? h.depth < here.depth : h.depth > here.depth) ? 1 : 0;
     return want_glass && abs(h.depth - here.depth) <= 1e-5f * here.depth ? 2 : 0;
   }
-  ivec2 step = abs(pixel - partner), at_q;
+  ivec2 step = abs(pixel - partner), at, at_q;
   dst_surface h_q;
-  float off = dst_history_sample(pixel, p.depth, want_glass, step, at, h);
-  float off_q = dst_history_sample(pixel, q.depth, want_glass, step, at_q, h_q);
+  vec2 offset, offset_q;
+  float off = dst_history_sample(pixel, p.depth, want_glass, step, at, h, offset);
+  float off_q = dst_history_sample(pixel, q.depth, want_glass, step, at_q, h_q, offset_q);
   if (off_q < off) {
     off = off_q;
     at = at_q;
     h = h_q;
+    offset = offset_q;
   }
-  if (!(off < 1.0f)) return 0;
-  return (want_glass ? h.depth < here.depth : h.depth > here.depth) ? 1 : 0;
+  if (!(off < 1.0f) || !(want_glass ? h.depth < here.depth : h.depth > here.depth)) return 0;
+  light = dst_light2_read(at);
+  dst_history_between(pixel, at, step, offset, h, light);
+  return 1;
 }
 
 void dst_other_layer(ivec2 pixel, dst_surface here, out dst_surface s, out dst_light_sample light) {
-  ivec2 at;
-  int from = dst_history_at(pixel, here, at, s);
-  if (from == 1) light = dst_light2_read(at);
-  else if (from == 2) light = dst_light_read(pixel);
-  else dst_spatial_layer(pixel, s, light);
+  if (dst_history_at(pixel, here, s, light) == 0) dst_spatial_layer(pixel, s, light);
 }
 #else
 void dst_other_layer(ivec2 pixel, dst_surface here, out dst_surface s, out dst_light_sample light) {
