@@ -52,7 +52,7 @@ TEST_CASE("each rung of the ladder calls for exactly one effect more, with a rea
     for (const feature& f : after) CHECK_FALSE(f.why.empty());
   }
   CHECK(scene_features(effect_scene(rung::seen)).back().why ==
-        "lights[1] casts shadows and its cone reaches objects[2], which is transparent");
+        "lights[1] casts shadows and reaches objects[2], which is transparent");
   CHECK(scene_features(effect_scene(rung::particles)).back().why == "particles[0] draws 60 particles of material 3");
 }
 

@@ -745,6 +745,58 @@ TEST_CASE("the physically based transmittance filters a pane's light by I_L C (1
   }
 }
 
+// A directional light's map is orthographic over the scene's bounds: straight down, the pane's shadow is
+// the pane's own square, coloured as a spot light's, black behind an opaque pane, and the same on both
+// backends.
+TEST_CASE("a directional light casts a pane's coloured shadow from an orthographic map", "[render][shadow]") {
+  const glm::vec3 colour(1.0f, 0.5f, 0.25f);
+  auto directional = [&](float alpha) {
+    scene s = shadow_scene(alpha, colour);
+    s.lights[0].kind = light_kind::directional;
+    return s;
+  };
+  const scene glass_scene = directional(0.5f);
+  const std::vector<feature> found = scene_features(glass_scene);
+  CHECK(std::count_if(found.begin(), found.end(), [](const feature& f) {
+          return f.what == effect::transparent_shadows && f.why == "lights[0] casts shadows and reaches objects[1], which is transparent";
+        }) == 1);
+  const options o = small(96, 96);
+  std::optional<frame> first;
+  for (backend b : backends) {
+    auto glass = draw(b, glass_scene, o);
+    auto wall = draw(b, directional(1.0f), o);
+    if (!glass || !wall) continue;
+    INFO(name(b));
+    const glm::mat4 to_world = render::camera_frame(glass_scene, o).inv_view_proj;
+    std::size_t in_shadow = 0, lit = 0, black = 0;
+    for (int y = 0; y < o.height; ++y)
+      for (int x = 0; x < o.width; ++x) {
+        const std::size_t i = std::size_t(y * o.width + x);
+        const surface g = gbuffer_at(*glass, i);
+        if (g.alpha < 1.0f || g.diffuse != glm::vec3(1.0f) || g.depth >= 1.0f) continue;
+        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), g.depth, 1.0f);
+        const glm::vec3 p = glm::vec3(h) / h.w;
+        if (std::fabs(p.x) < 0.4f && std::fabs(p.z) < 0.4f) {
+          ++in_shadow;  // N.L is 1: the light straight down on the floor
+          const glm::vec3 l = light_at(*glass, i).light, want = colour * 0.5f;
+          for (int c = 0; c < 3; ++c) CHECK(l[c] == Approx(want[c]).margin(2.0 / 255.0));
+          if (gbuffer_at(*wall, i).diffuse == glm::vec3(1.0f)) {
+            ++black;
+            CHECK(light_at(*wall, i).light == glm::vec3(0.0f));
+          }
+        } else if ((std::fabs(p.x) > 0.6f || std::fabs(p.z) > 0.6f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f) {
+          ++lit;
+          CHECK(light_at(*glass, i).light.x > 0.9f);
+        }
+      }
+    CHECK(in_shadow > 30);
+    CHECK(black > 10);
+    CHECK(lit > 500);
+    if (first) CHECK(rmse(first->final_image, glass->final_image) < 1.0);
+    else first = std::move(*glass);
+  }
+}
+
 TEST_CASE("every shadowed light starts from an empty shadow map", "[render][shadow]") {
   // The same spot light twice: each of its shadow passes must clear the map's depth, even after a light
   // pass turned depth writes off, or the second pass finds the first's depths and keeps nothing.

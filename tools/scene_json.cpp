@@ -226,8 +226,9 @@ light read_light(reader& r) {
   if (l.kind == light_kind::spot) {
     l.outer_angle = r.number("outer_angle", 30.0f, 0.0f, 90.0f);
     l.inner_angle = r.number("inner_angle", l.outer_angle, 0.0f, l.outer_angle);
-    l.shadows = r.boolean("shadows", false);
   }
+  l.shadows = r.boolean("shadows", false);
+  if (l.shadows && l.kind == light_kind::point) throw bad_field{r.field("shadows") + ": point lights cast no shadows yet (spot and directional lights do)"};
   r.finish();
   return l;
 }

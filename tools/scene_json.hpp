@@ -21,9 +21,11 @@
 // bottle "radius", "height"; sphere, cylinder and bottle "segments" (default 32); hair "radius" (of the
 // scalp), "strands", "length", "width" (default 0.01), "segments" (default 8), "seed" (default 1).
 // A spot light with "shadows" casts them from a map whose near and far planes are where the scene's bounds
-// begin and end seen from it (within its range); its receivers are biased by a fraction of their distance
-// from the light (dstrans render --shadow-bias, 0.005 unless given), so a scene's shadows do not depend on
-// its scale or units.
+// begin and end seen from it (within its range); a directional one from an orthographic map over the
+// scene's bounding sphere (a texel spans its diameter over --shadow-size). Receivers are biased by a
+// fraction of their distance from the map's eye (dstrans render --shadow-bias, 0.005 unless given), so a
+// scene's shadows do not depend on its scale or units. A point light with "shadows": true is an error: it
+// casts none yet.
 // Particle systems (dstrans::particle_system): radius 0.5, height 2, size 0.25, count 100, seed 1 unless given.
 // Post effects (dstrans::post_effect, run in order after the frame): blur, bloom and dof "radius" (taps, 4)
 // and "sigma" (2); bloom "threshold" (0.8) and "intensity" (1); dof "focus" (5) and "range" (2); aa

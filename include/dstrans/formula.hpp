@@ -357,6 +357,13 @@ inline const std::vector<formula>& formulas() {
           .within("near_plane", {0.01f, 1.0f})
           .within("far_plane", {2.0f, 100.0f})
           .yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_opaque_shadow, dst_ortho_linear_depth)
+          .within("window_depth", {0.0f, 1.0f})
+          .within("near_plane", {0.01f, 1.0f})
+          .within("far_plane", {2.0f, 100.0f})
+          .yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_depth).within("window_depth", {0.0f, 1.0f}).within("map", {1.0f, 2.0f}),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_point_depth).within("clip", {0.5f, 1.0f}).within("map", {1.0f, 2.0f}),
       DSTRANS_FORMULA(dst_opaque_shadow, dst_shadow_depth).within({"d_p"}, {0.0f, 2.0f}).within("bias", {0.0f, 0.01f}).yields(-0.01f, 1.0f),
       DSTRANS_FORMULA(dst_opaque_shadow, dst_opaque_shadow)
           .within("light", {0.0f, 4.0f})

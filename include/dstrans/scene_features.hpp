@@ -10,10 +10,10 @@
 // The effects and what calls for each:
 // - transparency: an object whose material has alpha below 1 (interlaced G-buffer, de-interlacing);
 // - refraction: such an object whose material is refractive;
-// - shadows: a spot light that casts shadows (shadow pass, depth map, lookup);
-// - transparent_shadows: such a light whose cone reaches a transparent object (the shadow map's colour
-//   target and the lookup of Eq. 3.1). Reaching is decided by the object's bounding sphere against the
-//   cone and range, so it is conservative: an occluded pane still counts;
+// - shadows: a spot or directional light that casts shadows (shadow pass, depth map, lookup);
+// - transparent_shadows: such a light that reaches a transparent object (the shadow map's colour target and
+//   the lookup of Eq. 3.1): a directional light reaches every object, a spot light those whose bounding
+//   sphere meets its cone and range, so it is conservative: an occluded pane still counts;
 // - many_layers: an object whose material is hair (per-pixel lists and the k-buffer resolve of S1);
 // - light_volumes: a particle system with particles (S2: the bake into a 3D texture, the particle pass).
 #pragma once
@@ -107,22 +107,26 @@ inline std::pair<glm::vec3, float> bounding_sphere(const object& o) {
 }
 }  // namespace detail
 
-// Whether spot light l's cone (outer angle, range) reaches object o's bounding sphere.
+// Whether light l reaches object o's bounding sphere: a directional light reaches every object, a point
+// light those within its range, a spot light those within its cone (outer angle) and range.
 inline bool light_reaches(const light& l, const object& o) {
   const auto [c, r] = detail::bounding_sphere(o);
   if (r < 0.0f) return false;
+  if (l.kind == light_kind::directional) return true;
   const glm::vec3 v = c - l.position;
   const float distance = glm::length(v);
   if (distance <= r) return true;
   if (distance - r >= l.range) return false;
+  if (l.kind == light_kind::point) return true;
   const float axis = glm::dot(v / distance, glm::normalize(l.direction));
   const float angle = std::acos(std::clamp(axis, -1.0f, 1.0f));
   const float spread = std::asin(std::min(r / distance, 1.0f));
   return angle - spread < glm::radians(l.outer_angle);
 }
 
-// Whether light l casts shadows the renderer draws (spot lights only, as in the thesis).
-inline bool casts_shadows(const light& l) { return l.shadows && l.kind == light_kind::spot; }
+// Whether light l casts shadows the renderer draws: spot lights (as in the thesis) from a perspective map,
+// directional lights from an orthographic one over the scene's bounds. Point lights cast none yet.
+inline bool casts_shadows(const light& l) { return l.shadows && l.kind != light_kind::point; }
 
 // Whether the shadow map of light l must hold transparent occluders: it casts shadows and reaches a
 // transparent object of s.
@@ -164,11 +168,12 @@ inline std::vector<feature> scene_features(const scene& s) {
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const light& l = s.lights[i];
     if (!casts_shadows(l)) continue;
-    add(effect::shadows, "lights[" + std::to_string(i) + "] is a spot light that casts shadows");
+    const char* kind = l.kind == light_kind::spot ? "spot" : "directional";
+    add(effect::shadows, "lights[" + std::to_string(i) + "] is a " + kind + " light that casts shadows");
     for (std::size_t k = 0; k < s.objects.size(); ++k) {
       const std::uint32_t m = s.objects[k].material;
       if (m < s.materials.size() && s.materials[m].transparent() && light_reaches(l, s.objects[k]))
-        add(effect::transparent_shadows, "lights[" + std::to_string(i) + "] casts shadows and its cone reaches objects[" +
+        add(effect::transparent_shadows, "lights[" + std::to_string(i) + "] casts shadows and reaches objects[" +
                                              std::to_string(k) + "], which is transparent");
     }
   }

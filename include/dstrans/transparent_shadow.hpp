@@ -29,6 +29,8 @@
 // - the renderer compares linear depths, as fractions of the map's far plane: dst_shadow_linear_depth turns
 //   a perspective map's window depth (0 at near, 1 at far; NaN as the cleared 1) into one, so that the
 //   bias can be a fraction of the receiver's distance and a uniformly scaled scene keeps its shadows;
+//   dst_ortho_linear_depth does the same for an orthographic map (a directional light's), whose window
+//   depth is linear already;
 // - dst_opaque_shadow is the plain shadow map the thesis compares with, looked up at the texel only.
 // dst_shadow_case says which line of Eq. 3.1 applies (0 blocked, 1 through the transparent candidate, 2
 // lit) for both transmittances.
@@ -46,12 +48,29 @@ DST_FN float dst_shadow_linear_depth(float window_depth, float near_plane, float
   float d = isnan(window_depth) ? 1.0f : (window_depth < 0.0f ? 0.0f : (window_depth > 1.0f ? 1.0f : window_depth));
   return near_plane / (far_plane - d * (far_plane - near_plane));
 }
+DST_FN float dst_ortho_linear_depth(float window_depth, float near_plane, float far_plane) {
+  float d = isnan(window_depth) ? 1.0f : (window_depth < 0.0f ? 0.0f : (window_depth > 1.0f ? 1.0f : window_depth));
+  return (near_plane + d * (far_plane - near_plane)) / far_plane;
+}
 DST_FN float dst_shadow_depth(float d_p, float bias) {
   float d = d_p - bias;
   return isnan(d) || d >= 1.0f ? 1.0f : d;
 }
 DST_FN vec3 dst_opaque_shadow(vec3 light, float d_p, float bias, float depth) {
   return depth < dst_shadow_depth(d_p, bias) ? vec3(0.0f) : light;
+}
+)
+
+// A light's shadow map, as the light block describes it (dst_light_data's cos_inner: y 1 for a spot light's
+// perspective map, 2 for a directional light's orthographic one; z and w the near and far planes): a
+// texel's window depth, and a point's clip position in the map, as the fractions of the far plane the
+// lookups compare. A perspective clip position's w is the distance along the light's axis.
+DSTRANS_SHARED(dst_shadow_map,
+DST_FN float dst_map_depth(float window_depth, vec4 map) {
+  return map.y > 1.5f ? dst_ortho_linear_depth(window_depth, map.z, map.w) : dst_shadow_linear_depth(window_depth, map.z, map.w);
+}
+DST_FN float dst_map_point_depth(vec4 clip, vec4 map) {
+  return map.y > 1.5f ? dst_ortho_linear_depth(clip.z / clip.w, map.z, map.w) : clip.w / map.w;
 }
 )
 

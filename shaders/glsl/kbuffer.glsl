@@ -21,14 +21,14 @@ float dst_hair_visibility(vec3 world, dst_light_data l, float alpha, int radius)
   vec3 ndc = h.xyz / h.w;
   ivec2 size = frame.size.zw;
   ivec2 texel = ivec2(floor(dst_ndc_window(ndc.xy, size)));
-  float near_plane = l.cos_inner.z, far_plane = l.cos_inner.w;
-  float along = dot(world - l.position_range.xyz, l.direction_kind.xyz);
+  float far_plane = l.cos_inner.w;
+  float along = far_plane * dst_map_point_depth(h, l.cos_inner);
   float sum = 0.0f, weights = 0.0f;
   for (int dy = -radius; dy <= radius; ++dy)
     for (int dx = -radius; dx <= radius; ++dx) {
       ivec2 t = clamp(texel + ivec2(dx, dy), ivec2(0), size - 1);
       float d = dst_shadow_read(t).depth;
-      float occluder = far_plane * dst_shadow_linear_depth(d, near_plane, far_plane);  // view depth
+      float occluder = far_plane * dst_map_depth(d, l.cos_inner);  // distance along the light's axis
       float w = dst_shadow_tap_weight(float(dx), float(dy));
       sum += w * dst_hair_transmittance(alpha, 50.0f, along - occluder - 0.01f);
       weights += w;

@@ -3,8 +3,8 @@
 // min(I_L, C)) and Phong (Eq. 2.1). Shared by the deferred light pass and the forward light passes.
 
 #ifdef DST_SHADOWS
-// Depths are compared linearly, as fractions of the map's far plane (h.w is the distance along the light's
-// axis), and the bias (frame.params.y) is a fraction of the receiver's distance.
+// Depths are compared linearly, as fractions of the map's far plane (dst_shadow_map), and the bias
+// (frame.params.y) is a fraction of the receiver's distance.
 vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
   vec4 h = l.shadow_view_proj * vec4(world, 1.0f);
   if (!(h.w > 0.0f)) return light;
@@ -12,21 +12,19 @@ vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
   ivec2 size = frame.size.zw;
   ivec2 texel = ivec2(floor(dst_ndc_window(ndc.xy, size)));
   if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, size))) return light;
-  float near_plane = l.cos_inner.z, far_plane = l.cos_inner.w;
-  float d_p = h.w / far_plane;
+  float d_p = dst_map_point_depth(h, l.cos_inner);
   float bias = frame.params.y * d_p;
 #ifdef DST_TRANSPARENT_SHADOWS
   ivec2 other = dst_interlace_partner(texel, size);
   dst_surface a = dst_shadow_read(texel), b = dst_shadow_read(other);
-  float depth_a = dst_shadow_linear_depth(a.depth, near_plane, far_plane);
-  float depth_b = dst_shadow_linear_depth(b.depth, near_plane, far_plane);
+  float depth_a = dst_map_depth(a.depth, l.cos_inner), depth_b = dst_map_depth(b.depth, l.cos_inner);
 #ifdef DST_TRANSMITTANCE
   return dst_transmitted_shadow(light, d_p, bias, depth_a, vec4(a.diffuse, a.alpha), depth_b, vec4(b.diffuse, b.alpha));
 #else
   return dst_transparent_shadow(light, d_p, bias, depth_a, vec4(a.diffuse, a.alpha), depth_b, vec4(b.diffuse, b.alpha));
 #endif
 #else
-  return dst_opaque_shadow(light, d_p, bias, dst_shadow_linear_depth(dst_shadow_read(texel).depth, near_plane, far_plane));
+  return dst_opaque_shadow(light, d_p, bias, dst_map_depth(dst_shadow_read(texel).depth, l.cos_inner));
 #endif
 }
 #endif

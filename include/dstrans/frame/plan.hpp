@@ -271,9 +271,24 @@ inline glm::vec2 shadow_planes(const bounds& b, const light& l) {
   return {std::clamp(d - b.radius, far_plane * 1e-3f, far_plane * 0.5f), far_plane};
 }
 
-inline glm::mat4 spot_view(const light& l) {
-  const glm::vec3 up = std::fabs(l.direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  return glm::lookAtRH(l.position, l.position + l.direction, up);
+inline glm::mat4 view_along(glm::vec3 eye, glm::vec3 direction) {
+  const glm::vec3 up = std::fabs(glm::normalize(direction).y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  return glm::lookAtRH(eye, eye + direction, up);
+}
+
+inline glm::mat4 spot_view(const light& l) { return view_along(l.position, l.direction); }
+
+// A directional light's shadow map: orthographic, along the light's direction, over the scene's bounding
+// sphere (radius r) seen from 2 r before its centre, so its near and far planes are r and 3 r and a texel
+// spans 2 r / size of the scene. An empty scene's is a unit sphere's.
+inline glm::vec2 directional_planes(const bounds& b) {
+  const float r = b.radius > 0.0f ? b.radius : 1.0f;
+  return {r, 3.0f * r};
+}
+inline glm::mat4 directional_view_proj(const bounds& b, const light& l) {
+  const float r = directional_planes(b).x;
+  const glm::vec3 eye = b.centre - 2.0f * r * glm::normalize(l.direction);
+  return glm::orthoRH_ZO(-r, r, -r, r, r, 3.0f * r) * view_along(eye, l.direction);
 }
 
 // The shape that bounds a light's reach, whatever the camera.
@@ -591,13 +606,15 @@ inline std::vector<light_block> light_blocks(const scene& s) {
   std::vector<light_block> out;
   const frame_detail::bounds b = frame_detail::scene_bounds(s);
   for (const light& l : s.lights) {
-    const glm::vec2 planes = frame_detail::shadow_planes(b, l);
+    const bool directional = l.kind == light_kind::directional;
+    const glm::vec2 planes = directional ? frame_detail::directional_planes(b) : frame_detail::shadow_planes(b, l);
     light_block lb{};
     const float kind = l.kind == light_kind::directional ? 0.0f : l.kind == light_kind::point ? 1.0f : 2.0f;
     lb.position_range = glm::vec4(l.position, l.range);
     lb.direction_kind = glm::vec4(l.direction, kind);
     lb.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
-    lb.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), l.shadows && l.kind == light_kind::spot ? 1.0f : 0.0f,
+    // y: 1 for a perspective map, 2 for an orthographic one (dst_shadow_map).
+    lb.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), !casts_shadows(l) ? 0.0f : directional ? 2.0f : 1.0f,
                             planes.x, planes.y);
     // The shadow map covers the outer cone; a 90-degree spot would need a 180-degree frustum, so
     // shadow maps stop at 85 degrees and what lies outside them is lit unshadowed. A 0-degree spot lights
@@ -605,6 +622,7 @@ inline std::vector<light_block> light_blocks(const scene& s) {
     const float half = std::clamp(l.outer_angle, 0.5f, 85.0f);
     if (l.kind == light_kind::spot)
       lb.shadow_view_proj = glm::perspectiveRH_ZO(glm::radians(2.0f * half), 1.0f, planes.x, planes.y) * frame_detail::spot_view(l);
+    if (directional) lb.shadow_view_proj = frame_detail::directional_view_proj(b, l);
     switch (frame_detail::shape_of(l)) {
       case volume::fullscreen: lb.volume = glm::mat4(1.0f); break;
       case volume::sphere: lb.volume = glm::scale(glm::translate(glm::mat4(1.0f), l.position), glm::vec3(l.range)); break;
