@@ -797,6 +797,40 @@ TEST_CASE("a directional light casts a pane's coloured shadow from an orthograph
   }
 }
 
+// The shadow map keeps one transparent layer (Table 3.3): under two stacked panes the light passes the one
+// nearer the light alone, as if the farther were clear (docs/integration.md says so).
+TEST_CASE("two coloured panes in a light's path: the shadow is the nearer pane's colour alone", "[render][shadow]") {
+  const glm::vec3 lower(1.0f, 0.5f, 0.25f), upper(0.25f, 0.5f, 1.0f);
+  scene s = shadow_scene(0.5f, lower);
+  s.materials.push_back(material{upper, 0.5f});
+  s.objects.push_back({shape_pane({1.0f, 1.0f}),
+                       glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.6f, 0.0f)), glm::radians(-90.0f),
+                                   glm::vec3(1, 0, 0)),
+                       2});
+  const options o = small(96, 96);
+  for (backend b : backends) {
+    auto f = draw(b, s, o);
+    if (!f) continue;
+    INFO(name(b));
+    const glm::mat4 to_world = render::camera_frame(s, o).inv_view_proj;
+    std::size_t under_both = 0;
+    for (int y = 0; y < o.height; ++y)
+      for (int x = 0; x < o.width; ++x) {
+        const std::size_t i = std::size_t(y * o.width + x);
+        const surface g = gbuffer_at(*f, i);
+        if (g.alpha < 1.0f || g.diffuse != glm::vec3(1.0f) || g.depth >= 1.0f) continue;
+        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), g.depth, 1.0f);
+        const glm::vec3 p = glm::vec3(h) / h.w;
+        if (std::fabs(p.x) >= 0.6f || std::fabs(p.z) >= 0.6f) continue;  // both panes' shadows cover this square
+        ++under_both;
+        const float n_dot_l = glm::normalize(s.lights[0].position - p).y;
+        const glm::vec3 l = light_at(*f, i).light, want = n_dot_l * upper * 0.5f;
+        for (int c = 0; c < 3; ++c) CHECK(l[c] == Approx(want[c]).margin(2.0 / 255.0));
+      }
+    CHECK(under_both > 50);
+  }
+}
+
 TEST_CASE("every shadowed light starts from an empty shadow map", "[render][shadow]") {
   // The same spot light twice: each of its shadow passes must clear the map's depth, even after a light
   // pass turned depth writes off, or the second pass finds the first's depths and keeps nothing.
