@@ -667,6 +667,21 @@ scene shadow_scene(float alpha, glm::vec3 colour) {
   s.view.fov_y = 50.0f;
   return s;
 }
+
+// Calls visit(i, p) for every pixel i of frame f of scene s that shows the white floor (opaque, diffuse 1),
+// with its world position p.
+template <class Visit>
+void floor_pixels(const frame& f, const scene& s, const options& o, Visit&& visit) {
+  const glm::mat4 to_world = render::camera_frame(s, o).inv_view_proj;
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      const std::size_t i = std::size_t(y * o.width + x);
+      const surface g = gbuffer_at(f, i);
+      if (g.alpha < 1.0f || g.diffuse != glm::vec3(1.0f) || g.depth >= 1.0f) continue;
+      const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), g.depth, 1.0f);
+      visit(i, glm::vec3(h) / h.w);
+    }
+}
 }  // namespace
 
 TEST_CASE("a coloured pane casts the shadow Eq. 3.1 predicts, an opaque one a black shadow", "[render][shadow]") {
@@ -681,32 +696,25 @@ TEST_CASE("a coloured pane casts the shadow Eq. 3.1 predicts, an opaque one a bl
     // Floor texels (white, opaque) whose world position lies in the pane's shadow, a 1.5-wide square
     // under the light: their light is N.L min(I_L, C)(1 - alpha) = N.L C / 2, since I_L > 1 > C there;
     // behind the opaque pane it is 0.
-    const glm::mat4 to_world = render::camera_frame(glass_scene, o).inv_view_proj;
     std::size_t in_shadow = 0, lit = 0, black = 0;
-    for (int y = 0; y < o.height; ++y)
-      for (int x = 0; x < o.width; ++x) {
-        const std::size_t i = std::size_t(y * o.width + x);
-        const surface s = gbuffer_at(*glass, i);
-        if (s.alpha < 1.0f || s.diffuse != glm::vec3(1.0f) || s.depth >= 1.0f) continue;
-        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), s.depth, 1.0f);
-        const glm::vec3 p = glm::vec3(h) / h.w;
-        const float n_dot_l = glm::normalize(glm::vec3(0.0f, 3.0f, 0.0f) - p).y;
-        if (std::fabs(p.x) < 0.7f && std::fabs(p.z) < 0.7f) {
-          ++in_shadow;
-          const glm::vec3 l = light_at(*glass, i).light, want = n_dot_l * colour * 0.5f;
-          CHECK(l.x == Approx(want.x).margin(2.0 / 255.0));
-          CHECK(l.y == Approx(want.y).margin(2.0 / 255.0));
-          CHECK(l.z == Approx(want.z).margin(2.0 / 255.0));
-          // Where the camera sees the floor past the opaque pane too, its shadow is black.
-          if (gbuffer_at(*wall, i).diffuse == glm::vec3(1.0f)) {
-            ++black;
-            CHECK(light_at(*wall, i).light == glm::vec3(0.0f));
-          }
-        } else if ((std::fabs(p.x) > 0.8f || std::fabs(p.z) > 0.8f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f) {
-          ++lit;
-          CHECK(light_at(*glass, i).light.x > 0.9f);  // the full light, clamped by the RGBA8 light buffer
+    floor_pixels(*glass, glass_scene, o, [&](std::size_t i, glm::vec3 p) {
+      const float n_dot_l = glm::normalize(glm::vec3(0.0f, 3.0f, 0.0f) - p).y;
+      if (std::fabs(p.x) < 0.7f && std::fabs(p.z) < 0.7f) {
+        ++in_shadow;
+        const glm::vec3 l = light_at(*glass, i).light, want = n_dot_l * colour * 0.5f;
+        CHECK(l.x == Approx(want.x).margin(2.0 / 255.0));
+        CHECK(l.y == Approx(want.y).margin(2.0 / 255.0));
+        CHECK(l.z == Approx(want.z).margin(2.0 / 255.0));
+        // Where the camera sees the floor past the opaque pane too, its shadow is black.
+        if (gbuffer_at(*wall, i).diffuse == glm::vec3(1.0f)) {
+          ++black;
+          CHECK(light_at(*wall, i).light == glm::vec3(0.0f));
         }
+      } else if ((std::fabs(p.x) > 0.8f || std::fabs(p.z) > 0.8f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f) {
+        ++lit;
+        CHECK(light_at(*glass, i).light.x > 0.9f);  // the full light, clamped by the RGBA8 light buffer
       }
+    });
     CHECK(in_shadow > 50);
     CHECK(black > 20);
     CHECK(lit > 500);
@@ -723,24 +731,17 @@ TEST_CASE("the physically based transmittance filters a pane's light by I_L C (1
     auto f = draw(b, s, o);
     if (!f) continue;
     INFO(name(b));
-    const glm::mat4 to_world = render::camera_frame(s, o).inv_view_proj;
     const glm::vec3 light_position = s.lights[0].position;
     std::size_t in_shadow = 0;
-    for (int y = 0; y < o.height; ++y)
-      for (int x = 0; x < o.width; ++x) {
-        const std::size_t i = std::size_t(y * o.width + x);
-        const surface g = gbuffer_at(*f, i);
-        if (g.alpha < 1.0f || g.diffuse != glm::vec3(1.0f) || g.depth >= 1.0f) continue;
-        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), g.depth, 1.0f);
-        const glm::vec3 p = glm::vec3(h) / h.w;
-        if (std::fabs(p.x) >= 0.7f || std::fabs(p.z) >= 0.7f) continue;
-        ++in_shadow;
-        const float distance = glm::length(light_position - p);
-        const float n_dot_l = (light_position.y - p.y) / distance;
-        const glm::vec3 want = n_dot_l * shader::dst_attenuation(distance, s.lights[0].range) * colour * 0.5f;
-        const glm::vec3 got = light_at(*f, i).light;
-        for (int c = 0; c < 3; ++c) CHECK(got[c] == Approx(want[c]).margin(2.0 / 255.0));
-      }
+    floor_pixels(*f, s, o, [&](std::size_t i, glm::vec3 p) {
+      if (std::fabs(p.x) >= 0.7f || std::fabs(p.z) >= 0.7f) return;
+      ++in_shadow;
+      const float distance = glm::length(light_position - p);
+      const float n_dot_l = (light_position.y - p.y) / distance;
+      const glm::vec3 want = n_dot_l * shader::dst_attenuation(distance, s.lights[0].range) * colour * 0.5f;
+      const glm::vec3 got = light_at(*f, i).light;
+      for (int c = 0; c < 3; ++c) CHECK(got[c] == Approx(want[c]).margin(2.0 / 255.0));
+    });
     CHECK(in_shadow > 50);
   }
 }
@@ -767,28 +768,21 @@ TEST_CASE("a directional light casts a pane's coloured shadow from an orthograph
     auto wall = draw(b, directional(1.0f), o);
     if (!glass || !wall) continue;
     INFO(name(b));
-    const glm::mat4 to_world = render::camera_frame(glass_scene, o).inv_view_proj;
     std::size_t in_shadow = 0, lit = 0, black = 0;
-    for (int y = 0; y < o.height; ++y)
-      for (int x = 0; x < o.width; ++x) {
-        const std::size_t i = std::size_t(y * o.width + x);
-        const surface g = gbuffer_at(*glass, i);
-        if (g.alpha < 1.0f || g.diffuse != glm::vec3(1.0f) || g.depth >= 1.0f) continue;
-        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), g.depth, 1.0f);
-        const glm::vec3 p = glm::vec3(h) / h.w;
-        if (std::fabs(p.x) < 0.4f && std::fabs(p.z) < 0.4f) {
-          ++in_shadow;  // N.L is 1: the light straight down on the floor
-          const glm::vec3 l = light_at(*glass, i).light, want = colour * 0.5f;
-          for (int c = 0; c < 3; ++c) CHECK(l[c] == Approx(want[c]).margin(2.0 / 255.0));
-          if (gbuffer_at(*wall, i).diffuse == glm::vec3(1.0f)) {
-            ++black;
-            CHECK(light_at(*wall, i).light == glm::vec3(0.0f));
-          }
-        } else if ((std::fabs(p.x) > 0.6f || std::fabs(p.z) > 0.6f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f) {
-          ++lit;
-          CHECK(light_at(*glass, i).light.x > 0.9f);
+    floor_pixels(*glass, glass_scene, o, [&](std::size_t i, glm::vec3 p) {
+      if (std::fabs(p.x) < 0.4f && std::fabs(p.z) < 0.4f) {
+        ++in_shadow;  // N.L is 1: the light straight down on the floor
+        const glm::vec3 l = light_at(*glass, i).light, want = colour * 0.5f;
+        for (int c = 0; c < 3; ++c) CHECK(l[c] == Approx(want[c]).margin(2.0 / 255.0));
+        if (gbuffer_at(*wall, i).diffuse == glm::vec3(1.0f)) {
+          ++black;
+          CHECK(light_at(*wall, i).light == glm::vec3(0.0f));
         }
+      } else if ((std::fabs(p.x) > 0.6f || std::fabs(p.z) > 0.6f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f) {
+        ++lit;
+        CHECK(light_at(*glass, i).light.x > 0.9f);
       }
+    });
     CHECK(in_shadow > 30);
     CHECK(black > 10);
     CHECK(lit > 500);
@@ -812,21 +806,14 @@ TEST_CASE("two coloured panes in a light's path: the shadow is the nearer pane's
     auto f = draw(b, s, o);
     if (!f) continue;
     INFO(name(b));
-    const glm::mat4 to_world = render::camera_frame(s, o).inv_view_proj;
     std::size_t under_both = 0;
-    for (int y = 0; y < o.height; ++y)
-      for (int x = 0; x < o.width; ++x) {
-        const std::size_t i = std::size_t(y * o.width + x);
-        const surface g = gbuffer_at(*f, i);
-        if (g.alpha < 1.0f || g.diffuse != glm::vec3(1.0f) || g.depth >= 1.0f) continue;
-        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), g.depth, 1.0f);
-        const glm::vec3 p = glm::vec3(h) / h.w;
-        if (std::fabs(p.x) >= 0.6f || std::fabs(p.z) >= 0.6f) continue;  // both panes' shadows cover this square
-        ++under_both;
-        const float n_dot_l = glm::normalize(s.lights[0].position - p).y;
-        const glm::vec3 l = light_at(*f, i).light, want = n_dot_l * upper * 0.5f;
-        for (int c = 0; c < 3; ++c) CHECK(l[c] == Approx(want[c]).margin(2.0 / 255.0));
-      }
+    floor_pixels(*f, s, o, [&](std::size_t i, glm::vec3 p) {
+      if (std::fabs(p.x) >= 0.6f || std::fabs(p.z) >= 0.6f) return;  // both panes' shadows cover this square
+      ++under_both;
+      const float n_dot_l = glm::normalize(s.lights[0].position - p).y;
+      const glm::vec3 l = light_at(*f, i).light, want = n_dot_l * upper * 0.5f;
+      for (int c = 0; c < 3; ++c) CHECK(l[c] == Approx(want[c]).margin(2.0 / 255.0));
+    });
     CHECK(under_both > 50);
   }
 }
@@ -844,20 +831,13 @@ TEST_CASE("every shadowed light starts from an empty shadow map", "[render][shad
     auto f = draw(b, twice, o);
     if (!once || !f) continue;
     INFO(name(b));
-    const glm::mat4 to_world = render::camera_frame(twice, o).inv_view_proj;
     std::size_t in_shadow = 0;
-    for (int y = 0; y < o.height; ++y)
-      for (int x = 0; x < o.width; ++x) {
-        const std::size_t i = std::size_t(y * o.width + x);
-        const surface s = gbuffer_at(*f, i);
-        if (s.alpha < 1.0f || s.diffuse != glm::vec3(1.0f) || s.depth >= 1.0f) continue;
-        const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), s.depth, 1.0f);
-        const glm::vec3 p = glm::vec3(h) / h.w;
-        if (std::fabs(p.x) >= 0.7f || std::fabs(p.z) >= 0.7f) continue;
-        ++in_shadow;
-        // Both lights filtered by the pane: twice one light's N.L C (1 - alpha).
-        CHECK(light_at(*f, i).light.x == Approx(2.0f * light_at(*once, i).light.x).margin(2.0 / 255.0));
-      }
+    floor_pixels(*f, twice, o, [&](std::size_t i, glm::vec3 p) {
+      if (std::fabs(p.x) >= 0.7f || std::fabs(p.z) >= 0.7f) return;
+      ++in_shadow;
+      // Both lights filtered by the pane: twice one light's N.L C (1 - alpha).
+      CHECK(light_at(*f, i).light.x == Approx(2.0f * light_at(*once, i).light.x).margin(2.0 / 255.0));
+    });
     CHECK(in_shadow > 50);
   }
 }
