@@ -58,7 +58,7 @@ def main():
     layers = [r for r in everything if r["scene"] == "hair"]   # S1
     volumes = [r for r in everything if r["scene"] == "smoke"]  # S2
     post = [r for r in everything if r["scene"] == "glass_room_post"]  # S3
-    sweep = [r for r in everything if r["scene"] == "glass_room_reconstruct"]  # issue 12
+    sweep = [r for r in everything if r["scene"] == "glass_room_reconstruct"]
     specular = [r for r in everything if r["scene"] == "glass_room_specular"]
     paths = [r for r in everything if r["scene"] == "glass_room_path"]  # temporal interlacing
     paired = [r for r in everything if r["scene"].endswith("_paired")]

@@ -158,7 +158,7 @@ inline bool agrees(const value_type& t, const std::uint32_t* cpu, const std::uin
   return true;
 }
 
-// The property of issue 6: for arguments within their domains, every float of every result is finite
+// The hard cases' property: for arguments within their domains, every float of every result is finite
 // and within the formula's promised range (formula::yields). Returns the number of calls that break it
 // and describes the first in `why`.
 inline std::size_t broken_properties(const formula& f, const words& results, std::size_t calls, std::string& why) {

@@ -1,6 +1,6 @@
-// A ladder of scenes that call for one effect more at each step (issue 7): a room lit by a shadowed spot
+// A ladder of scenes that call for one effect more at each step: a room lit by a shadowed spot
 // light and the sun; then a glass pane out of the spot's cone; then the pane refractive; then the spot
-// turned to the pane; then a column of smoke (issue 10). Without shadows at step 0 the scene calls for nothing.
+// turned to the pane; then a column of smoke. Without shadows at step 0 the scene calls for nothing.
 #pragma once
 
 #include <set>

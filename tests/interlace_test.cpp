@@ -71,7 +71,7 @@ TEST_CASE("none: every pixel keeps transparency and is its own partner", "[inter
     }
 }
 
-// Issue 12: the edge-aware reconstruction's two formulas.
+// The edge-aware reconstruction's two formulas.
 TEST_CASE("reconstruction returns a constant layer exactly and adds nothing across an edge", "[interlace][reconstruct]") {
   using shader::dst_layer_similarity;
   using shader::dst_reconstruct;

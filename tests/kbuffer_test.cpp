@@ -1,4 +1,4 @@
-// S1's shared formulas on the CPU (issue 9): the node's fields round-trip, Eq. 2 behaves as a strand, the
+// S1's shared formulas on the CPU: the node's fields round-trip, Eq. 2 behaves as a strand, the
 // tail blend is exact for one fragment and order-independent, and the hair shape is what its seed says.
 #include <catch2/catch.hpp>
 

@@ -119,7 +119,7 @@ TEST_CASE("the RGB-specular light buffer keeps the specular's colour through RGB
   CHECK(d[1].channels == std::vector<std::string>{"specular.r", "specular.g", "specular.b", "unused"});
 }
 
-// Issue 12: the compact layout holds Table 3.1's information in half the bytes, with the light buffer 12.
+// The compact layout holds Table 3.1's information in half the bytes, with the light buffer 12.
 static_assert(compact_gbuffer::bytes_per_pixel == 8 && compact_gbuffer::target_count == 2);
 static_assert(compact_gbuffer::bytes_per_pixel + thesis_light_buffer::bytes_per_pixel <= 12);
 

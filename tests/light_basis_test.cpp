@@ -1,4 +1,4 @@
-// S2's light bases with the normalisation S2 left open (issue 10): a light along an axis is Lambert
+// S2's light bases with the normalisation S2 left open: a light along an axis is Lambert
 // exactly; for every light direction, the light a surface receives averaged over its normal equals
 // Lambert's average; without the normalisation it does not; projections add.
 #include <catch2/catch.hpp>

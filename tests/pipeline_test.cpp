@@ -1,4 +1,4 @@
-// Issue 7, without a GPU: the effects a scene calls for, the plan they give at compile time and at run
+// Without a GPU: the effects a scene calls for, the plan they give at compile time and at run
 // time, and the pass shaders' switches resolved out of the GLSL text.
 #include <catch2/catch.hpp>
 

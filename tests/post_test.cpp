@@ -1,4 +1,4 @@
-// Issue 11 without a GPU: a post-processing chain expands into passes whose targets are exactly what its
+// Without a GPU: a post-processing chain expands into passes whose targets are exactly what its
 // effects write, and the blur's kernel.
 #include <catch2/catch.hpp>
 

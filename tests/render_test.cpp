@@ -892,7 +892,7 @@ TEST_CASE("a transparent pane seen from behind still shows, its normal turned to
   }
 }
 
-// Issue 6: a scene built to hit the hard cases of tests/hard_cases.jsonl in a frame (light four times
+// A scene built to hit the hard cases of tests/hard_cases.jsonl in a frame (light four times
 // above 1 through glass, glass of alpha 0 and 254/255, glass over the cleared background and across the
 // first and last rows, a point light on the floor, shadowed spot lights of 0 and 90 degrees, specular
 // powers 0 and 255), with refraction strong enough to push samples off the image, at sizes down to one
@@ -938,7 +938,7 @@ TEST_CASE("the hard_cases scene renders finite, non-negative buffers on both bac
       }
 }
 
-// Issue 7: a scene calls only for its effects, and leaving the others out changes no pixel.
+// A scene calls only for its effects, and leaving the others out changes no pixel.
 TEST_CASE("each rung's own plan draws the image the full pipeline draws", "[render][pipeline]") {
   for (testing::rung r : testing::all_rungs)
     for (backend b : backends) {
@@ -1021,7 +1021,7 @@ TEST_CASE("the k-buffer's capture is one program for every list variant: only th
   CHECK(program(L::wboit, "capture pass") != program(L::forward, "capture pass"));
 }
 
-// Issue 9: a little hair (few enough strands that no pixel holds more than 32 fragments), lit by the sun
+// A little hair (few enough strands that no pixel holds more than 32 fragments), lit by the sun
 // alone so that every term of the resolve can be recomputed here; a second head of hair on exactly the
 // same strands, coloured differently, makes fragments of equal depth.
 scene few_strands(bool with_hair) {
@@ -1160,7 +1160,7 @@ TEST_CASE("hair on GL and Vulkan: the same fragments, the same mean colour", "[r
   CHECK(std::abs(mg - mv) / double(g->final_image.rgba.size()) < 0.5);
 }
 
-// Issue 10: the light-volume bake on the GPU gives the CPU's cells, for a grid whose sizes are not
+// The light-volume bake on the GPU gives the CPU's cells, for a grid whose sizes are not
 // multiples of the work group's 4, baked in two dispatches that add up (as unshadowed lights and a
 // shadowed spot light would be).
 std::vector<volume_light> bake_lights() {
@@ -1386,7 +1386,7 @@ TEST_CASE("the light-volume bake gives the CPU's atlas on GL and Vulkan, regions
   }
 }
 
-// Issue 10 in the renderer: the atlas it bakes is the CPU's where no shadow is cast, and a shadowed spot
+// The bake in the renderer: the atlas it bakes is the CPU's where no shadow is cast, and a shadowed spot
 // light's own dispatch reads its shadow map (never adding light, taking some away behind an occluder).
 TEST_CASE("the renderer bakes the CPU's atlas, and a shadowed spot light's dispatch takes light away behind its occluder",
           "[light_volume][render]") {
@@ -1489,7 +1489,7 @@ TEST_CASE("smoke lit from light volumes stays near the per-fragment reference on
     }
 }
 
-// Issue 11: the post-processing chain as the renderers run it.
+// The post-processing chain as the renderers run it.
 scene with_chain(scene s, std::vector<post_effect> chain) {
   s.post = std::move(chain);
   return s;
@@ -1704,7 +1704,7 @@ TEST_CASE("the chain is part of the plan: its passes and targets, and nothing wi
   CHECK(render::plan_of(chained, fwd).post.passes.empty());  // forward has no G-buffer to read
 }
 
-// Issue 12: a wall behind a pane of glass that covers the view, lit by the ambient term alone; with
+// A wall behind a pane of glass that covers the view, lit by the ambient term alone; with
 // `split`, the wall's right half stands farther back in another colour (a depth edge down the middle).
 scene glass_over_walls(bool split) {
   scene s;
@@ -1884,7 +1884,7 @@ TEST_CASE("temporal interlacing on GL and Vulkan: the same frames", "[temporal][
   CHECK(rmse(gl->final_image, vk->final_image) < 1.0);
 }
 
-// Issue 12: the compact layout (8 bytes a pixel, depth from the attachment) draws what Table 3.1's draws,
+// The compact layout (8 bytes a pixel, depth from the attachment) draws what Table 3.1's draws,
 // up to its normals' quantisation, with every deferred technique and effect.
 TEST_CASE("every deferred technique and effect draws the same picture with the compact layout, on GL and Vulkan",
           "[layout][compact][render]") {

@@ -347,7 +347,7 @@ result<json> post_records(const scene& room, const render::options& base, const 
   return records;
 }
 
-// Issue 12's sweep on glass_room (scene "glass_room_reconstruct" in the results): each interlace predicate
+// The reconstruction sweep on glass_room (scene "glass_room_reconstruct" in the results): each interlace predicate
 // with the thesis's partner fetch and with the edge-aware reconstruction, against depth peeling at the
 // same settings over all pixels and over the glass the peeled first layer holds.
 template <class Draw>

@@ -42,7 +42,7 @@ json random_value(const json& type, const dstrans::input_range& range, std::mt19
   std::uniform_int_distribution<int> small(-2, 64);
   // NaN, infinities and the other edge values are exercised call by call in backend_checks.hpp; mixed
   // at random they would mostly meet what GLSL leaves undefined (pow(1, inf), min of NaN), which is
-  // issue 6's to decide formula by formula.
+  // for the hard cases to decide formula by formula.
   auto scalar_float = [&]() -> json {
     switch (rng() % 16) {
       case 0: return 0.0;
@@ -166,7 +166,7 @@ TEST_CASE("eval answers bad lines with an error line, in order, and bad options 
   CHECK(run("eval --json", "").status == 2);
 }
 
-// Issue 6: each hard case of tests/hard_cases.jsonl, fed to `dstrans eval` as it is, returns the value
+// Each hard case of tests/hard_cases.jsonl, fed to `dstrans eval` as it is, returns the value
 // written beside it, on every backend (within 2^-16 of max(1, |value|), the transcendental tolerance).
 TEST_CASE("every hard case returns its documented value on cpu, gl and vk", "[cli][eval][hard_cases]") {
   std::ifstream file(std::string(DSTRANS_SOURCE_DIR) + "/tests/hard_cases.jsonl");

@@ -1,4 +1,4 @@
-// dstrans plan and dstrans gen pipeline end to end (issue 7): a scene without glass plans a plain deferred
+// dstrans plan and dstrans gen pipeline end to end: a scene without glass plans a plain deferred
 // pipeline, and each step of the ladder (a pane, a refractive pane, a spot light that sees it) adds
 // exactly its effect's switches and targets; every shader gen pipeline writes compiles as it is (the
 // camera stands within the spot light's reach, so its light pass is the full-screen variant).
