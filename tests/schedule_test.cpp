@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <random>
 
 #include <dstrans/frame/passes.hpp>
 #include <dstrans/frame/plan.hpp>
@@ -57,9 +58,11 @@ TEST_CASE("every example scene's schedule reads what it wrote before, under ever
           const auto ok = check_schedule(sched, {"scene"}, {p.post.output});
           INFO(ok.error());
           CHECK(ok);
-          std::size_t shadowed = 0;
-          for (render::shadow_mode lookup : p.lookups) shadowed += lookup != render::shadow_mode::off;
-          CHECK(count(sched, "shadow") == shadowed);
+          std::size_t shadow_views = 0;  // a pass for each view of each shadowed light's map
+          const std::vector<render::light_block> blocks = render::light_blocks(s);
+          for (std::size_t i = 0; i < p.lookups.size(); ++i)
+            if (p.lookups[i] != render::shadow_mode::off) shadow_views += std::size_t(render::shadow_views(blocks[i]));
+          CHECK(count(sched, "shadow") == shadow_views);
           CHECK(count(sched, "light") == s.lights.size() * std::size_t(p.forward ? 1 : p.layers));
           CHECK(count(sched, "gbuffer") == std::size_t(p.layers));
           for (const scheduled_pass& pass : sched.passes)
@@ -102,7 +105,8 @@ TEST_CASE("a schedule states each pass's fixed-function state, clears and geomet
         INFO(pass.label);
         const bool fills = pass.step == pass_step::gbuffer || pass.step == pass_step::ambient || pass.step == pass_step::shadow;
         CHECK((pass.state.depth == depth_test::less && pass.state.depth_write) == fills);
-        CHECK(pass.clear_depth == fills);
+        // A cube's later faces draw into the map its first face cleared.
+        CHECK(pass.clear_depth == (fills && !(pass.step == pass_step::shadow && pass.index > 0)));
         CHECK((pass.draws != geometry_set::none) == (pass.kind == pass_kind::geometry && pass.step != pass_step::particles));
         if (pass.step == pass_step::gbuffer) CHECK(pass.clears == render::gbuffer_clears(o.layout));
         if (pass.step == pass_step::shadow) CHECK(pass.draws == geometry_set::everything);
@@ -123,6 +127,68 @@ TEST_CASE("a schedule states each pass's fixed-function state, clears and geomet
       CHECK(sched.cleared == cleared);
     }
   }
+}
+
+// The cube's six faces are drawn into disjoint tiles of the one map, each from the view that the lookups
+// (dst_map_view_point, dst_map_texel) take a point in that face's direction to: the pass's clip position
+// is the lookup's, and its texel lies in the pass's tile.
+TEST_CASE("a point light's shadow map is six faces drawn into the tiles of one map, where the lookups find them", "[schedule][shadow]") {
+  scene s = example("glass_room.json");
+  light point;
+  point.kind = light_kind::point;
+  point.position = {0.3f, 1.7f, -0.2f};
+  point.range = 8.0f;
+  point.shadows = true;
+  s.lights = {point};
+  render::options o;
+  o.shadow_size = 100;
+  const render::frame_plan p = render::plan_of(s, o);
+  const frame_schedule sched = render::schedule_of(s, p, o);
+  std::vector<scheduled_pass> faces;
+  for (const scheduled_pass& pass : sched.passes)
+    if (pass.step == pass_step::shadow) faces.push_back(pass);
+  REQUIRE(faces.size() == 6);
+  const render::light_block lb = render::light_blocks(s)[0];
+  CHECK(render::shadow_views(lb) == 6);
+  const glm::ivec2 size(o.shadow_size);
+  for (int v = 0; v < 6; ++v) {
+    const scheduled_pass& f = faces[std::size_t(v)];
+    INFO("face " << v);
+    CHECK(f.index == v);
+    CHECK(f.light == 0);
+    CHECK(f.clear_depth == (v == 0));
+    CHECK(f.clears.empty() == (v > 0));
+    CHECK(f.area == glm::ivec4(v % 3 * 32, v / 3 * 32, 32, 32));  // 100 / 3 = 33, even: 32
+    const render::frame_block view = render::light_frame(s, lb, o, v);
+    std::mt19937 rng{unsigned(v)};
+    std::uniform_real_distribution<float> across(-0.99f, 0.99f), along(0.2f, 3.0f);
+    for (int k = 0; k < 50; ++k) {
+      // A point in face v's direction: its axis component the largest.
+      glm::vec3 d(across(rng), across(rng), across(rng));
+      d[v / 2] = (v % 2 ? -1.0f : 1.0f);
+      d *= along(rng);
+      const glm::vec3 world = point.position + d;
+      REQUIRE(shader::dst_cube_face(d) == v);
+      const glm::vec4 drawn = view.view_proj * glm::vec4(world, 1.0f);
+      const glm::vec4 looked = lb.shadow_view_proj * glm::vec4(shader::dst_map_view_point(world, point.position, lb.cos_inner), 1.0f);
+      for (int c = 0; c < 4; ++c) CHECK(drawn[c] == Approx(looked[c]).margin(1e-5));
+      CHECK(std::abs(drawn.x) <= drawn.w);
+      CHECK(std::abs(drawn.y) <= drawn.w);
+      const glm::ivec2 origin = shader::dst_map_tile_origin(world, point.position, lb.cos_inner, size);
+      const glm::ivec2 extent = shader::dst_map_tile_extent(lb.cos_inner, size);
+      CHECK(origin == glm::ivec2(f.area));
+      CHECK(extent == glm::ivec2(f.area.z, f.area.w));
+      const glm::ivec2 texel = shader::dst_map_texel(glm::vec2(looked) / looked.w, origin, extent, lb.cos_inner);
+      CHECK(shader::dst_tile_holds(texel, origin, extent));
+    }
+  }
+  // Spot and directional maps are drawn once, into the whole map.
+  s.lights[0].kind = light_kind::spot;
+  const frame_schedule spot = render::schedule_of(s, render::plan_of(s, o), o);
+  CHECK(count(spot, "shadow") == 1);
+  for (const scheduled_pass& pass : spot.passes)
+    if (pass.step == pass_step::shadow) CHECK(pass.area == glm::ivec4(0));
+  CHECK(render::shadow_views(render::light_blocks(s)[0]) == 1);
 }
 
 TEST_CASE("drawn_indices picks a pass's run of a flattened scene, and times_of sums a frame's passes by timer", "[schedule]") {

@@ -228,7 +228,6 @@ light read_light(reader& r) {
     l.inner_angle = r.number("inner_angle", l.outer_angle, 0.0f, l.outer_angle);
   }
   l.shadows = r.boolean("shadows", false);
-  if (l.shadows && l.kind == light_kind::point) throw bad_field{r.field("shadows") + ": point lights cast no shadows yet (spot and directional lights do)"};
   r.finish();
   return l;
 }

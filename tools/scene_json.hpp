@@ -22,10 +22,10 @@
 // scalp), "strands", "length", "width" (default 0.01), "segments" (default 8), "seed" (default 1).
 // A spot light with "shadows" casts them from a map whose near and far planes are where the scene's bounds
 // begin and end seen from it (within its range); a directional one from an orthographic map over the
-// scene's bounding sphere (a texel spans its diameter over --shadow-size). Receivers are biased by a
-// fraction of their distance from the map's eye (dstrans render --shadow-bias, 0.005 unless given), so a
-// scene's shadows do not depend on its scale or units. A point light with "shadows": true is an error: it
-// casts none yet.
+// scene's bounding sphere (a texel spans its diameter over --shadow-size); a point one from a cube of six
+// 90-degree faces, each a tile of the map (a third of --shadow-size a side). Receivers are biased by a
+// fraction of their distance from the map's eye (dstrans render --shadow-bias, 0.005 unless given) and
+// moved a texel along their normal, so a scene's shadows do not depend on its scale or units.
 // Particle systems (dstrans::particle_system): radius 0.5, height 2, size 0.25, count 100, seed 1 unless given.
 // Post effects (dstrans::post_effect, run in order after the frame): blur, bloom and dof "radius" (taps, 4)
 // and "sigma" (2); bloom "threshold" (0.8) and "intensity" (1); dof "focus" (5) and "range" (2); aa

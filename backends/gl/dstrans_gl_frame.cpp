@@ -80,7 +80,7 @@ struct renderer::impl {
          shadow_prog = 0, capture_prog = 0, resolve_prog = 0, bake_prog = 0, bake_shadowed_prog = 0, particle_prog = 0;
   std::vector<GLuint> post_progs, post_blocks;
   GLuint fullscreen_vao = 0, frame_ubo = 0, shadow_ubo = 0, materials = 0, lights = 0;
-  std::vector<frame_block> light_frames;  // each light's shadow-map view
+  std::vector<std::vector<frame_block>> light_frames;  // each light's shadow-map views
   gl::targets shadow_map;
   int pictured_light = -1;  // the light whose shadow colour frame_targets::shadow_picture shows
   GLuint unshadowed_buffer = 0, bake_regions = 0, particle_vao = 0, particle_quads = 0, particle_regions = 0;
@@ -212,7 +212,10 @@ result<bool> renderer::impl::make_fixed() {
   const std::vector<light_block> light_data = light_blocks(description);
   lights = make_buffer(light_data, "lights");
   buffers.insert(buffers.end(), {frame_ubo, shadow_ubo, materials, lights});
-  for (const light_block& l : light_data) light_frames.push_back(light_frame(description, l, o));
+  for (const light_block& l : light_data) {
+    light_frames.emplace_back();
+    for (int v = 0; v < shadow_views(l); ++v) light_frames.back().push_back(light_frame(description, l, o, v));
+  }
 
   if (mode != shadow_mode::off) {
     auto sm = mode == shadow_mode::transparent
@@ -448,10 +451,16 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
       bind(shadow_map);
       clear(pass, shadow_map);
       apply(pass.state);
-      glNamedBufferSubData(shadow_ubo, 0, sizeof(frame_block), &light_frames[std::size_t(i)]);
+      glNamedBufferSubData(shadow_ubo, 0, sizeof(frame_block), &light_frames[std::size_t(i)][std::size_t(pass.index)]);
       glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), shadow_ubo);
       glUseProgram(shadow_prog);
+      if (pass.area.z > 0) {  // a cube face's tile; rows from the top are GL's with glClipControl(GL_UPPER_LEFT)
+        glViewport(pass.area.x, pass.area.y, pass.area.z, pass.area.w);
+        glScissor(pass.area.x, pass.area.y, pass.area.z, pass.area.w);
+        glEnable(GL_SCISSOR_TEST);
+      }
       draw(pass);
+      if (pass.area.z > 0) glDisable(GL_SCISSOR_TEST);
       if (i == pictured_light && out.shadow_picture.framebuffer && frames_drawn == 0)  // once: the lights do not move
         glCopyImageSubData(shadow_map.textures[1], GL_TEXTURE_2D, 0, 0, 0, 0, out.shadow_picture.textures[0], GL_TEXTURE_2D, 0, 0, 0, 0,
                            o.shadow_size, o.shadow_size, 1);

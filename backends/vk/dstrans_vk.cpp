@@ -668,9 +668,14 @@ void device::begin_rendering(VkCommandBuffer cmd, const targets& t, const std::v
   ri.pColorAttachments = colors.data();
   ri.pDepthAttachment = t.depth.view ? &depth : nullptr;
   begin_rendering_(cmd, &ri);
-  const VkViewport vp{0.0f, float(t.height), float(t.width), -float(t.height), 0.0f, 1.0f};
+  set_area(cmd, glm::ivec4(0, 0, t.width, t.height));
+}
+
+void device::set_area(VkCommandBuffer cmd, glm::ivec4 area) {
+  const VkViewport vp{float(area.x), float(area.y + area.w), float(area.z), -float(area.w), 0.0f, 1.0f};
   vkCmdSetViewport(cmd, 0, 1, &vp);
-  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+  const VkRect2D scissor{{area.x, area.y}, {std::uint32_t(area.z), std::uint32_t(area.w)}};
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
 void device::end_rendering(VkCommandBuffer cmd) { end_rendering_(cmd); }

@@ -170,6 +170,8 @@ class device {
   // APIs. `clear` holds one colour per target (and clears depth to 1); empty loads what is there. The
   // images are in GENERAL, or with `optimal` in COLOR_ATTACHMENT_OPTIMAL and DEPTH_STENCIL_ATTACHMENT_OPTIMAL.
   void begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear, bool optimal = false);
+  // Narrows the rendering begun to `area` (x, y from the top left, width, height): viewport and scissor.
+  static void set_area(VkCommandBuffer cmd, glm::ivec4 area);
   void end_rendering(VkCommandBuffer cmd);
 
   // How many memory blocks (vkAllocateMemory calls) the device holds now.

@@ -150,7 +150,8 @@ struct renderer::impl {
   std::size_t sphere_count = 0, cone_count = 0;
   std::vector<buffer> post_blocks, camera_blocks, quads;  // the last two: one a frame in flight
   std::vector<std::size_t> quad_counts;
-  std::map<int, buffer> shadowed_lights, light_blocks_by_light;  // by light
+  std::map<int, buffer> shadowed_lights;                 // by light
+  std::map<int, std::vector<buffer>> light_blocks_by_light;  // by light, a block for each view of its shadow map
   std::map<int, std::uint32_t> shadow_layer_of;                  // by light
   vk::targets shadow_map;
   int pictured_light = -1;
@@ -365,9 +366,13 @@ result<bool> renderer::impl::make_fixed() {
   camera_blocks.resize(std::size_t(slots));
   for (buffer& b : camera_blocks) made.emplace_back(&b, filled(dev, std::vector<frame_block>{camera_frame(description, o)}, uniform_use, "camera frame"));
   for (std::size_t i = 0; i < description.lights.size(); ++i)
-    if (plan.lookups[i] != shadow_mode::off)
-      made.emplace_back(&light_blocks_by_light[int(i)],
-                        filled(dev, std::vector<frame_block>{light_frame(description, light_data[i], o)}, uniform_use, "light frame"));
+    if (plan.lookups[i] != shadow_mode::off) {
+      std::vector<buffer>& views = light_blocks_by_light[int(i)];
+      views.resize(std::size_t(shadow_views(light_data[i])));
+      for (std::size_t v = 0; v < views.size(); ++v)
+        made.emplace_back(&views[v], filled(dev, std::vector<frame_block>{light_frame(description, light_data[i], o, int(v))}, uniform_use,
+                                            "light frame"));
+    }
   post_blocks.resize(plan.post.passes.size());
   for (std::size_t k = 0; k < post_blocks.size(); ++k) {
     const post_pass& pass = plan.post.passes[k];
@@ -562,7 +567,8 @@ bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const
   b.buffers = {{binding(slot::frame), camera_blocks[std::size_t(slot)].handle},
                {binding(slot::materials), materials.handle},
                {binding(slot::lights), lights.handle}};
-  if (pass.step == pass_step::shadow) b.buffers[binding(slot::frame)] = light_blocks_by_light.at(pass.light).handle;
+  if (pass.step == pass_step::shadow)
+    b.buffers[binding(slot::frame)] = light_blocks_by_light.at(pass.light).at(std::size_t(pass.index)).handle;
   for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) b.images[binding(slot::shadow_map) + int(t)] = &shadow_map.colors[t];
   // A G-buffer's images at `first` and up (the compact layout's depth attachment at its depth slot).
   auto add_gbuffer = [&](int first, const vk::targets& g) {
@@ -870,6 +876,7 @@ void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, VkDesc
   const vk::targets* into = attachments(pass);
   if (into) {
     dev.begin_rendering(cmd, *into, pass.clears, true);
+    if (pass.area.z > 0) dev.set_area(cmd, pass.area);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.handle);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.layout, 0, 1, &set, 0, nullptr);
   }

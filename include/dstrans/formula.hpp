@@ -362,8 +362,22 @@ inline const std::vector<formula>& formulas() {
           .within("near_plane", {0.01f, 1.0f})
           .within("far_plane", {2.0f, 100.0f})
           .yields(0.0f, 1.0f),
-      DSTRANS_FORMULA(dst_shadow_map, dst_map_depth).within("window_depth", {0.0f, 1.0f}).within("map", {1.0f, 2.0f}),
-      DSTRANS_FORMULA(dst_shadow_map, dst_map_point_depth).within("clip", {0.5f, 1.0f}).within("map", {1.0f, 2.0f}),
+      DSTRANS_FORMULA(dst_opaque_shadow, dst_clamp_window_depth).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_orthographic),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_cube),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_depth).within("window_depth", {0.0f, 1.0f}).within("map", {1.0f, 3.0f}),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_point_depth).within("clip", {0.5f, 1.0f}).within("map", {1.0f, 3.0f}),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_view_point).within("map", {0.0f, 4.0f}),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_tile_origin).within("map", {0.0f, 4.0f}),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_tile_extent).within("map", {0.0f, 4.0f}),
+      DSTRANS_FORMULA(dst_shadow_map, dst_tile_holds),
+      DSTRANS_FORMULA(dst_shadow_map, dst_tile_column),
+      DSTRANS_FORMULA(dst_shadow_map, dst_map_texel).within("map", {0.0f, 4.0f}),
+      DSTRANS_FORMULA(dst_shadow_map, dst_tile_partner),
+      DSTRANS_FORMULA(dst_cube_map, dst_cube_face),
+      DSTRANS_FORMULA(dst_cube_map, dst_cube_face_view),
+      DSTRANS_FORMULA(dst_cube_map, dst_cube_tile_size),
+      DSTRANS_FORMULA(dst_cube_map, dst_cube_tile_origin),
       DSTRANS_FORMULA(dst_opaque_shadow, dst_shadow_depth).within({"d_p"}, {0.0f, 2.0f}).within("bias", {0.0f, 0.01f}).yields(-0.01f, 1.0f),
       DSTRANS_FORMULA(dst_opaque_shadow, dst_opaque_shadow)
           .within("light", {0.0f, 4.0f})

@@ -51,7 +51,7 @@ struct light {
   float range = 10.0f;                     // point and spot: no light at and past this distance
   float inner_angle = 20.0f;               // spot: full light within, degrees from the axis
   float outer_angle = 30.0f;               // spot: no light past, at most 90
-  bool shadows = false;                    // spot and directional lights cast them; point lights none yet
+  bool shadows = false;                    // from a perspective (spot), orthographic (directional) or cube (point) map
 };
 
 struct camera {

@@ -125,8 +125,9 @@ inline bool light_reaches(const light& l, const object& o) {
 }
 
 // Whether light l casts shadows the renderer draws: spot lights (as in the thesis) from a perspective map,
-// directional lights from an orthographic one over the scene's bounds. Point lights cast none yet.
-inline bool casts_shadows(const light& l) { return l.shadows && l.kind != light_kind::point; }
+// directional lights from an orthographic one over the scene's bounds, point lights from a cube of six
+// perspective maps.
+inline bool casts_shadows(const light& l) { return l.shadows; }
 
 // Whether the shadow map of light l must hold transparent occluders: it casts shadows and reaches a
 // transparent object of s.
@@ -168,7 +169,7 @@ inline std::vector<feature> scene_features(const scene& s) {
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const light& l = s.lights[i];
     if (!casts_shadows(l)) continue;
-    const char* kind = l.kind == light_kind::spot ? "spot" : "directional";
+    const char* kind = l.kind == light_kind::spot ? "spot" : l.kind == light_kind::point ? "point" : "directional";
     add(effect::shadows, "lights[" + std::to_string(i) + "] is a " + kind + " light that casts shadows");
     for (std::size_t k = 0; k < s.objects.size(); ++k) {
       const std::uint32_t m = s.objects[k].material;

@@ -41,16 +41,18 @@
 #pragma once
 
 #include "detail/shared.hpp"
+#include "fullscreen.hpp"
 #include "surface.hpp"
 
 DSTRANS_SHARED(dst_opaque_shadow,
+DST_FN float dst_clamp_window_depth(float window_depth) {
+  return isnan(window_depth) ? 1.0f : (window_depth < 0.0f ? 0.0f : (window_depth > 1.0f ? 1.0f : window_depth));
+}
 DST_FN float dst_shadow_linear_depth(float window_depth, float near_plane, float far_plane) {
-  float d = isnan(window_depth) ? 1.0f : (window_depth < 0.0f ? 0.0f : (window_depth > 1.0f ? 1.0f : window_depth));
-  return near_plane / (far_plane - d * (far_plane - near_plane));
+  return near_plane / (far_plane - dst_clamp_window_depth(window_depth) * (far_plane - near_plane));
 }
 DST_FN float dst_ortho_linear_depth(float window_depth, float near_plane, float far_plane) {
-  float d = isnan(window_depth) ? 1.0f : (window_depth < 0.0f ? 0.0f : (window_depth > 1.0f ? 1.0f : window_depth));
-  return (near_plane + d * (far_plane - near_plane)) / far_plane;
+  return (near_plane + dst_clamp_window_depth(window_depth) * (far_plane - near_plane)) / far_plane;
 }
 DST_FN float dst_shadow_depth(float d_p, float bias) {
   float d = d_p - bias;
@@ -61,16 +63,88 @@ DST_FN vec3 dst_opaque_shadow(vec3 light, float d_p, float bias, float depth) {
 }
 )
 
+// A point light's shadow map is a cube: six square perspective maps of 90 degrees, one a face, drawn as
+// tiles of the one map (three across, two down, each an even number of texels a side starting on an even
+// texel, so that the interlace keeps its rows within a tile). A point belongs to the face of the largest
+// component of its offset d from the light (ties to the lower face: +x, -x, +y, -y, +z, -z; NaN to the
+// last, decided before any comparison as every shared formula decides NaN), and
+// dst_cube_face_view turns d into that face's view space (looking down -z, as glm::lookAt along the face's
+// axis with up +y, or +x for the faces along y), which the face's projection takes to its tile.
+DSTRANS_SHARED(dst_cube_map,
+DST_FN int dst_cube_face(vec3 d) {
+  if (isnan(d.x) || isnan(d.y) || isnan(d.z)) return 5;
+  vec3 a = abs(d);
+  if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0f ? 0 : 1;
+  if (a.y >= a.z) return d.y >= 0.0f ? 2 : 3;
+  return d.z >= 0.0f ? 4 : 5;
+}
+DST_FN vec3 dst_cube_face_view(vec3 d, int face) {
+  if (face == 0) return vec3(d.z, d.y, -d.x);
+  if (face == 1) return vec3(-d.z, d.y, d.x);
+  if (face == 2) return vec3(-d.z, d.x, -d.y);
+  if (face == 3) return vec3(d.z, d.x, d.y);
+  if (face == 4) return vec3(-d.x, d.y, -d.z);
+  return d;
+}
+DST_FN int dst_cube_tile_size(ivec2 size) {
+  int t = min(size.x / 3, size.y / 2);
+  return t < 4 ? 2 : t - t % 2;
+}
+DST_FN ivec2 dst_cube_tile_origin(int face, ivec2 size) {
+  int f = face < 0 ? 0 : (face > 5 ? 5 : face);
+  return ivec2(f % 3, f / 3) * dst_cube_tile_size(size);
+}
+)
+
 // A light's shadow map, as the light block describes it (dst_light_data's cos_inner: y 1 for a spot light's
-// perspective map, 2 for a directional light's orthographic one; z and w the near and far planes): a
-// texel's window depth, and a point's clip position in the map, as the fractions of the far plane the
-// lookups compare. A perspective clip position's w is the distance along the light's axis.
+// perspective map, 2 for a directional light's orthographic one, 3 for a point light's cube; z and w the
+// near and far planes): a texel's window depth, and a point's clip position in the map, as the fractions
+// of the far plane the lookups compare. A perspective clip position's w is the distance along the light's
+// (or the cube face's) axis.
+// A lookup takes a world point p to the map's view (dst_map_view_point: p itself but for a cube, whose
+// face's view the light block's projection follows), finds the tile that holds it (the whole map but for
+// a cube) and the texel under its normalized device coordinates (dst_map_texel: clamped to a cube's
+// tile, which always holds the point; outside another map's, where the map does not reach). The
+// partner of an interlaced texel is the one on the other side where the interlace's own lies outside the
+// tile (dst_tile_partner), so that no lookup reads another face.
 DSTRANS_SHARED(dst_shadow_map,
+DST_FN bool dst_map_orthographic(vec4 map) { return map.y > 1.5f && map.y < 2.5f; }
+DST_FN bool dst_map_cube(vec4 map) { return map.y > 2.5f; }
 DST_FN float dst_map_depth(float window_depth, vec4 map) {
-  return map.y > 1.5f ? dst_ortho_linear_depth(window_depth, map.z, map.w) : dst_shadow_linear_depth(window_depth, map.z, map.w);
+  return dst_map_orthographic(map) ? dst_ortho_linear_depth(window_depth, map.z, map.w)
+                                   : dst_shadow_linear_depth(window_depth, map.z, map.w);
 }
 DST_FN float dst_map_point_depth(vec4 clip, vec4 map) {
-  return map.y > 1.5f ? dst_ortho_linear_depth(clip.z / clip.w, map.z, map.w) : clip.w / map.w;
+  return dst_map_orthographic(map) ? dst_ortho_linear_depth(clip.z / clip.w, map.z, map.w) : clip.w / map.w;
+}
+DST_FN vec3 dst_map_view_point(vec3 p, vec3 light_position, vec4 map) {
+  if (!dst_map_cube(map)) return p;
+  vec3 d = p - light_position;
+  return dst_cube_face_view(d, dst_cube_face(d));
+}
+DST_FN ivec2 dst_map_tile_origin(vec3 p, vec3 light_position, vec4 map, ivec2 size) {
+  return dst_map_cube(map) ? dst_cube_tile_origin(dst_cube_face(p - light_position), size) : ivec2(0);
+}
+DST_FN ivec2 dst_map_tile_extent(vec4 map, ivec2 size) { return dst_map_cube(map) ? ivec2(dst_cube_tile_size(size)) : size; }
+// Tile arithmetic is unsigned where int could overflow: it wraps, as GLSL's does.
+DST_FN bool dst_tile_holds(ivec2 texel, ivec2 origin, ivec2 extent) {
+  return texel.x >= origin.x && texel.y >= origin.y && uint(texel.x) - uint(origin.x) < uint(max(extent.x, 0)) &&
+         uint(texel.y) - uint(origin.y) < uint(max(extent.y, 0));
+}
+DST_FN int dst_tile_column(float at, int extent) {
+  if (!(at >= 0.0f) || extent < 1) return 0;
+  return at < float(extent) ? min(int(floor(at)), extent - 1) : extent - 1;
+}
+DST_FN ivec2 dst_map_texel(vec2 ndc, ivec2 origin, ivec2 extent, vec4 map) {
+  vec2 at = dst_ndc_window(ndc, extent);
+  bool inside = at.x >= 0.0f && at.y >= 0.0f && at.x < float(extent.x) && at.y < float(extent.y);
+  if (!dst_map_cube(map) && !inside) return ivec2(uvec2(origin) - uvec2(1u));
+  return ivec2(uvec2(origin) + uvec2(ivec2(dst_tile_column(at.x, extent.x), dst_tile_column(at.y, extent.y))));
+}
+DST_FN ivec2 dst_tile_partner(ivec2 texel, ivec2 partner, ivec2 origin, ivec2 extent) {
+  if (dst_tile_holds(partner, origin, extent)) return partner;
+  ivec2 mirrored = ivec2(uvec2(texel) * 2u - uvec2(partner));
+  return dst_tile_holds(mirrored, origin, extent) ? mirrored : texel;
 }
 )
 

@@ -16,17 +16,19 @@ const uint dst_no_node = 0xffffffffu;
 // the shadow map (radius 2: 25 taps; radius 0: the centre), 50 strands a unit of distance behind the
 // first occluder.
 float dst_hair_visibility(vec3 world, dst_light_data l, float alpha, int radius) {
-  vec4 h = l.shadow_view_proj * vec4(world, 1.0f);
+  vec4 h = l.shadow_view_proj * vec4(dst_map_view_point(world, l.position_range.xyz, l.cos_inner), 1.0f);
   if (!(h.w > 0.0f)) return 1.0f;
-  vec3 ndc = h.xyz / h.w;
   ivec2 size = frame.size.zw;
-  ivec2 texel = ivec2(floor(dst_ndc_window(ndc.xy, size)));
+  ivec2 origin = dst_map_tile_origin(world, l.position_range.xyz, l.cos_inner, size);
+  ivec2 extent = dst_map_tile_extent(l.cos_inner, size);
+  ivec2 texel = dst_map_texel(h.xy / h.w, origin, extent, l.cos_inner);
+  if (!dst_tile_holds(texel, origin, extent)) return 1.0f;  // where the map does not reach, as dst_shadowed
   float far_plane = l.cos_inner.w;
   float along = far_plane * dst_map_point_depth(h, l.cos_inner);
   float sum = 0.0f, weights = 0.0f;
   for (int dy = -radius; dy <= radius; ++dy)
     for (int dx = -radius; dx <= radius; ++dx) {
-      ivec2 t = clamp(texel + ivec2(dx, dy), ivec2(0), size - 1);
+      ivec2 t = clamp(texel + ivec2(dx, dy), origin, origin + extent - 1);  // taps stay on the point's tile
       float d = dst_shadow_read(t).depth;
       float occluder = far_plane * dst_map_depth(d, l.cos_inner);  // distance along the light's axis
       float w = dst_shadow_tap_weight(float(dx), float(dy));

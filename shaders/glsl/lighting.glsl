@@ -6,16 +6,17 @@
 // Depths are compared linearly, as fractions of the map's far plane (dst_shadow_map), and the bias
 // (frame.params.y) is a fraction of the receiver's distance.
 vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
-  vec4 h = l.shadow_view_proj * vec4(world, 1.0f);
+  vec4 h = l.shadow_view_proj * vec4(dst_map_view_point(world, l.position_range.xyz, l.cos_inner), 1.0f);
   if (!(h.w > 0.0f)) return light;
-  vec3 ndc = h.xyz / h.w;
   ivec2 size = frame.size.zw;
-  ivec2 texel = ivec2(floor(dst_ndc_window(ndc.xy, size)));
-  if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, size))) return light;
+  ivec2 origin = dst_map_tile_origin(world, l.position_range.xyz, l.cos_inner, size);
+  ivec2 extent = dst_map_tile_extent(l.cos_inner, size);
+  ivec2 texel = dst_map_texel(h.xy / h.w, origin, extent, l.cos_inner);
+  if (!dst_tile_holds(texel, origin, extent)) return light;
   float d_p = dst_map_point_depth(h, l.cos_inner);
   float bias = frame.params.y * d_p;
 #ifdef DST_TRANSPARENT_SHADOWS
-  ivec2 other = dst_interlace_partner(texel, size);
+  ivec2 other = dst_tile_partner(texel, dst_interlace_partner(texel, size), origin, extent);
   dst_surface a = dst_shadow_read(texel), b = dst_shadow_read(other);
   float depth_a = dst_map_depth(a.depth, l.cos_inner), depth_b = dst_map_depth(b.depth, l.cos_inner);
 #ifdef DST_TRANSMITTANCE
@@ -27,6 +28,18 @@ vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
   return dst_opaque_shadow(light, d_p, bias, dst_map_depth(dst_shadow_read(texel).depth, l.cos_inner));
 #endif
 }
+
+// A surface's point (unit normal n) is looked up one texel of the map away along its normal (a normal
+// offset): seen at a grazing angle from the light, a surface spans more depth within one texel than the
+// bias covers, and would shadow itself in stripes. A texel spans 2 w / (s extent) of the map's view plane
+// at depth w (1 for an orthographic map), s being its projection's x scale: the length of the first row
+// of shadow_view_proj's rotation part.
+vec3 dst_shadowed_surface(vec3 light, vec3 world, vec3 n, dst_light_data l) {
+  vec4 h = l.shadow_view_proj * vec4(dst_map_view_point(world, l.position_range.xyz, l.cos_inner), 1.0f);
+  float s = length(vec3(l.shadow_view_proj[0][0], l.shadow_view_proj[1][0], l.shadow_view_proj[2][0]));
+  float texel = 2.0f * h.w / (s * float(dst_map_tile_extent(l.cos_inner, frame.size.zw).x));
+  return dst_shadowed(light, h.w > 0.0f && texel > 0.0f ? world + n * texel : world, l);
+}
 #endif
 
 // Light `l` at world point `p` with unit normal `n` and Phong exponent `spec_power`, seen from the camera.
@@ -37,7 +50,7 @@ dst_light_sample dst_light_at_point(dst_light_data l, vec3 p, vec3 n, float spec
                                l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, p);
   vec3 light = l.colour_cos_outer.xyz * reach.w;
 #ifdef DST_SHADOWS
-  if (l.cos_inner.y > 0.5f) light = dst_shadowed(light, p, l);
+  if (l.cos_inner.y > 0.5f) light = dst_shadowed_surface(light, p, n, l);
 #endif
   dst_light_sample s = dst_phong(n, reach.xyz, normalize(frame.camera_position.xyz - p), spec_power, light);
 #ifndef DST_RGB_SPECULAR

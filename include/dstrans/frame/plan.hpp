@@ -25,6 +25,7 @@
 #include "../post.hpp"
 #include "../result.hpp"
 #include "../scene.hpp"
+#include "../transparent_shadow.hpp"
 #include "blocks.hpp"
 #include "schedule.hpp"
 
@@ -185,8 +186,11 @@ frame_block sequence_frame(frame_block f, const frame_block& previous, std::uint
                            const options& o);
 // The same for camera `c` (a viewer's, moving from frame to frame).
 frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o);
-// The same, seen from spot light `l` of light_blocks (its shadow map's view and projection).
-frame_block light_frame(const scene& s, const light_block& l, const options& o);
+// The same, seen from light `l` of light_blocks as its shadow map's view `view` (a point light's cube face
+// 0-5, drawn into its tile; other maps have one view, 0) sees it.
+frame_block light_frame(const scene& s, const light_block& l, const options& o, int view = 0);
+// How many views light `l`'s shadow map is drawn from: six for a point light's cube, else one.
+int shadow_views(const light_block& l);
 std::vector<material_block> material_blocks(const scene& s);
 std::vector<light_block> light_blocks(const scene& s);
 // Light volumes: the model the options pick, the atlas of the scene's particle systems (a region of
@@ -277,6 +281,17 @@ inline glm::mat4 view_along(glm::vec3 eye, glm::vec3 direction) {
 }
 
 inline glm::mat4 spot_view(const light& l) { return view_along(l.position, l.direction); }
+
+// The view of cube face `face` from `eye`: the shared face view (dst_cube_face_view) of the offset from it.
+inline glm::mat4 cube_face_view(glm::vec3 eye, int face) {
+  glm::mat4 m(1.0f);
+  for (int axis = 0; axis < 3; ++axis) {
+    glm::vec3 e(0.0f);
+    e[axis] = 1.0f;
+    m[axis] = glm::vec4(shader::dst_cube_face_view(e, face), 0.0f);
+  }
+  return m * glm::translate(glm::mat4(1.0f), -eye);
+}
 
 // A directional light's shadow map: orthographic, along the light's direction, over the scene's bounding
 // sphere (radius r) seen from 2 r before its centre, so its near and far planes are r and 3 r and a texel
@@ -475,17 +490,29 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
   if (smoke.baking) out.cleared.push_back("volume atlas");
   if (smoke.baking && !smoke.unshadowed_lights.empty())
     add(pass_step::bake, "bake", "bake pass", pass_kind::dispatch, -1, {"scene"}, {"volume atlas"});
+  const std::vector<light_block> lights = light_blocks(s);
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const int l = int(i);
     const std::string n = std::to_string(i);
     const bool shadowed = p.lookups[i] != shadow_mode::off;
     std::vector<std::string> reads{"scene"};
     if (shadowed) {
-      scheduled_pass& sh = add(pass_step::shadow, "shadow", "shadow pass, light " + n, pass_kind::geometry, l, {"scene"}, {"shadow map"});
-      sh.state = depth_tested;
-      sh.draws = geometry_set::everything;
-      sh.clears = p.shadows == shadow_mode::transparent ? std::vector<glm::vec4>{far_plane, far_plane} : std::vector<glm::vec4>{far_plane};
-      sh.clear_depth = true;
+      const int views = shadow_views(lights[i]);
+      for (int v = 0; v < views; ++v) {
+        scheduled_pass& sh = add(pass_step::shadow, "shadow", "shadow pass, light " + n + (views > 1 ? ", face " + std::to_string(v) : ""),
+                                 pass_kind::geometry, l, {"scene"}, {"shadow map"});
+        sh.index = v;
+        sh.state = depth_tested;
+        sh.draws = geometry_set::everything;
+        if (v == 0)  // a cube's later faces keep what the first one cleared
+          sh.clears = p.shadows == shadow_mode::transparent ? std::vector<glm::vec4>{far_plane, far_plane} : std::vector<glm::vec4>{far_plane};
+        sh.clear_depth = v == 0;
+        if (views > 1) {
+          const glm::ivec2 size(o.shadow_size);
+          const int tile = shader::dst_cube_tile_size(size);
+          sh.area = glm::ivec4(shader::dst_cube_tile_origin(v, size), tile, tile);
+        }
+      }
       if (smoke.baking)
         add(pass_step::bake_light, "bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume atlas"});
       if (smoke.reference)
@@ -589,9 +616,12 @@ inline frame_block sequence_frame(frame_block f, const frame_block& previous, st
   return f;
 }
 
-inline frame_block light_frame(const scene& s, const light_block& l, const options& o) {
+inline int shadow_views(const light_block& l) { return shader::dst_map_cube(l.cos_inner) ? 6 : 1; }
+
+inline frame_block light_frame(const scene& s, const light_block& l, const options& o, int view) {
   frame_block f = camera_frame(s, o);
   f.view_proj = l.shadow_view_proj;
+  if (shadow_views(l) > 1) f.view_proj = l.shadow_view_proj * frame_detail::cube_face_view(glm::vec3(l.position_range), view);
   return f;
 }
 
@@ -613,9 +643,9 @@ inline std::vector<light_block> light_blocks(const scene& s) {
     lb.position_range = glm::vec4(l.position, l.range);
     lb.direction_kind = glm::vec4(l.direction, kind);
     lb.colour_cos_outer = glm::vec4(l.colour * l.intensity, std::cos(glm::radians(l.outer_angle)));
-    // y: 1 for a perspective map, 2 for an orthographic one (dst_shadow_map).
-    lb.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), !casts_shadows(l) ? 0.0f : directional ? 2.0f : 1.0f,
-                            planes.x, planes.y);
+    // y: 1 for a perspective map, 2 for an orthographic one, 3 for a cube (dst_shadow_map).
+    const float map = !casts_shadows(l) ? 0.0f : directional ? 2.0f : l.kind == light_kind::point ? 3.0f : 1.0f;
+    lb.cos_inner = glm::vec4(std::cos(glm::radians(l.inner_angle)), map, planes.x, planes.y);
     // The shadow map covers the outer cone; a 90-degree spot would need a 180-degree frustum, so
     // shadow maps stop at 85 degrees and what lies outside them is lit unshadowed. A 0-degree spot lights
     // only its axis, which a frustum of 1 degree holds (one of 0 degrees has an infinite projection).
@@ -623,6 +653,8 @@ inline std::vector<light_block> light_blocks(const scene& s) {
     if (l.kind == light_kind::spot)
       lb.shadow_view_proj = glm::perspectiveRH_ZO(glm::radians(2.0f * half), 1.0f, planes.x, planes.y) * frame_detail::spot_view(l);
     if (directional) lb.shadow_view_proj = frame_detail::directional_view_proj(b, l);
+    // A cube's faces share this projection; each face's view is the shaders' (dst_cube_face_view).
+    if (l.kind == light_kind::point) lb.shadow_view_proj = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, planes.x, planes.y);
     switch (frame_detail::shape_of(l)) {
       case volume::fullscreen: lb.volume = glm::mat4(1.0f); break;
       case volume::sphere: lb.volume = glm::scale(glm::translate(glm::mat4(1.0f), l.position), glm::vec3(l.range)); break;

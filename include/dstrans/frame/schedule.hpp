@@ -75,7 +75,9 @@ struct scheduled_pass {
   int light = -1;     // the light it serves; -1: none
   std::vector<std::string> reads, writes;  // resources by name ("gbuffer", "shadow map", "final", ...)
   pass_step step = pass_step::compose;
-  int index = 0;      // the G-buffer layer it serves (peeling's second: 1), or a post pass's place in the chain
+  int index = 0;      // the G-buffer layer it serves (peeling's second: 1), a post pass's place in the chain,
+                      // or the view of a shadow map it draws (light_frame's)
+  glm::ivec4 area{0}; // where it draws: x, y (from the top left), width, height; zero size: the whole target
   pass_state state;
   geometry_set draws = geometry_set::none;
   // Before it draws: its colour attachments cleared to these (none: kept), its depth to the far plane.
