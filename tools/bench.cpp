@@ -579,6 +579,15 @@ result<json> paired_records(const scene& room, const render::options& base, cons
                           "at_most", n == 2 ? 1.05 : 1.15, n == 2 || n == 64);
         !ok)
       return failure{ok.error()};
+  // Soft shadows: Eq. 3.1 averaged over 5 x 5 texels against the thesis's one, at 2 shadowed spot lights
+  // (no source sets a target).
+  paired_side filtered = with(T::interlaced, S::transparent, true);
+  filtered.o.shadow_filter = 5;
+  filtered.settings["shadow_filter"] = 5;
+  if (auto ok = measure_on("filtered 5x5 / hard, transparent shadows", with_lights(room, 2), with(T::interlaced, S::transparent, true),
+                           filtered, nullptr);
+      !ok)
+    return failure{ok.error()};
   // The same for one directional light (an orthographic map over the whole scene) and one point light
   // hanging between the shelves (a cube: six faces drawn into tiles of the map); the thesis measured spot
   // lights only, so no target. The room's ceiling shades its floor from the sun: that row is a cost.

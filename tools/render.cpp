@@ -25,6 +25,8 @@ const char* const usage =
     "       [--shadow-bias FRACTION]   a receiver moves this fraction of its distance from the light towards it\n"
     "                           before the shadow test, in linear depth (default 0.005; 0 to 1), so shadows keep\n"
     "                           their shape when a scene is scaled\n"
+    "       [--shadow-filter N]   soft shadows: Eq. 3.1 averaged over N x N texels of the map (odd, 1 to 15;\n"
+    "                           default 1, hard shadows), each texel paired with its own interlace partner\n"
     "       [--frames N]   render N frames with the same resources; pass times are their medians\n"
     "       [--transmittance thesis|physical]   light through glass: min(I_L, C) (Eq. 3.2) or I_L C\n"
     "       [--float-targets]   light buffers and the final image in RGBA32F: no saturation, NaN kept\n"
@@ -73,6 +75,8 @@ int render(std::vector<std::string> args) {
     o.height = to_int(take_option(args, "--height", "180"), 1, 8192, "--height");
     o.refraction = float(to_int(take_option(args, "--refraction", "8"), 0, 256, "--refraction"));
     o.shadow_size = to_int(take_option(args, "--shadow-size", "1024"), 16, 8192, "--shadow-size");
+    o.shadow_filter = to_int(take_option(args, "--shadow-filter", "1"), 1, 15, "--shadow-filter");
+    if (o.shadow_filter % 2 == 0) throw usage_error{"--shadow-filter must be odd (the receiver's texel and as many on each side)"};
     o.frames = to_int(take_option(args, "--frames", "1"), 1, 1000, "--frames");
     o.kbuffer_k = to_int(take_option(args, "--k", "8"), 1, 32, "--k");
     const std::string layers = take_option(args, "--layers", "deferred");

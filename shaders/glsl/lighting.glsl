@@ -3,20 +3,10 @@
 // min(I_L, C)) and Phong (Eq. 2.1). Shared by the deferred light pass and the forward light passes.
 
 #ifdef DST_SHADOWS
-// Depths are compared linearly, as fractions of the map's far plane (dst_shadow_map), and the bias
-// (frame.params.y) is a fraction of the receiver's distance.
-vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
-  vec4 h = l.shadow_view_proj * vec4(dst_map_view_point(world, l.position_range.xyz, l.cos_inner), 1.0f);
-  if (!(h.w > 0.0f)) return light;
-  ivec2 size = frame.size.zw;
-  ivec2 origin = dst_map_tile_origin(world, l.position_range.xyz, l.cos_inner, size);
-  ivec2 extent = dst_map_tile_extent(l.cos_inner, size);
-  ivec2 texel = dst_map_texel(h.xy / h.w, origin, extent, l.cos_inner);
-  if (!dst_tile_holds(texel, origin, extent)) return light;
-  float d_p = dst_map_point_depth(h, l.cos_inner);
-  float bias = frame.params.y * d_p;
+// Eq. 3.1 at one texel of the map (its interlace partner kept within the tile) for a point at depth d_p.
+vec3 dst_shadow_texel(vec3 light, ivec2 texel, ivec2 origin, ivec2 extent, float d_p, float bias, dst_light_data l) {
 #ifdef DST_TRANSPARENT_SHADOWS
-  ivec2 other = dst_tile_partner(texel, dst_interlace_partner(texel, size), origin, extent);
+  ivec2 other = dst_tile_partner(texel, dst_interlace_partner(texel, frame.size.zw), origin, extent);
   dst_surface a = dst_shadow_read(texel), b = dst_shadow_read(other);
   float depth_a = dst_map_depth(a.depth, l.cos_inner), depth_b = dst_map_depth(b.depth, l.cos_inner);
 #ifdef DST_TRANSMITTANCE
@@ -29,16 +19,38 @@ vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
 #endif
 }
 
-// A surface's point (unit normal n) is looked up one texel of the map away along its normal (a normal
-// offset): seen at a grazing angle from the light, a surface spans more depth within one texel than the
-// bias covers, and would shadow itself in stripes. A texel spans 2 w / (s extent) of the map's view plane
-// at depth w (1 for an orthographic map), s being its projection's x scale: the length of the first row
-// of shadow_view_proj's rotation part.
+// The light that reaches `world` past the shadow map: Eq. 3.1 at its texel, or (soft shadows) its mean
+// over the texels within dst_shadow_filter_radius of it, on the point's tile. Depths are compared
+// linearly, as fractions of the map's far plane (dst_shadow_map), and the bias (frame.params.y) is a
+// fraction of the receiver's distance.
+vec3 dst_shadowed(vec3 light, vec3 world, dst_light_data l) {
+  vec4 h = l.shadow_view_proj * vec4(dst_map_view_point(world, l.position_range.xyz, l.cos_inner), 1.0f);
+  if (!(h.w > 0.0f)) return light;
+  ivec2 origin = dst_map_tile_origin(world, l.position_range.xyz, l.cos_inner, frame.size.zw);
+  ivec2 extent = dst_map_tile_extent(l.cos_inner, frame.size.zw);
+  ivec2 texel = dst_map_texel(h.xy / h.w, origin, extent, l.cos_inner);
+  if (!dst_tile_holds(texel, origin, extent)) return light;
+  float d_p = dst_map_point_depth(h, l.cos_inner);
+  float bias = frame.params.y * d_p;
+  vec3 sum = vec3(0.0f);
+  for (int dy = -dst_shadow_filter_radius; dy <= dst_shadow_filter_radius; ++dy)
+    for (int dx = -dst_shadow_filter_radius; dx <= dst_shadow_filter_radius; ++dx)
+      sum += dst_shadow_texel(light, clamp(texel + ivec2(dx, dy), origin, origin + extent - 1), origin, extent, d_p, bias, l);
+  int taps = 2 * dst_shadow_filter_radius + 1;
+  return sum / float(taps * taps);
+}
+
+// A surface's point (unit normal n) is looked up (1 + the filter's radius) texels of the map away along
+// its normal (a normal offset): seen at a grazing angle from the light, a surface spans more depth within
+// one texel than the bias covers, and would shadow itself in stripes; a filter's outer texels lie farther
+// along it. A texel spans 2 w / (s extent) of the map's view plane at depth w (1 for an orthographic
+// map), s being its projection's x scale: the length of the first row of shadow_view_proj's rotation part.
 vec3 dst_shadowed_surface(vec3 light, vec3 world, vec3 n, dst_light_data l) {
   vec4 h = l.shadow_view_proj * vec4(dst_map_view_point(world, l.position_range.xyz, l.cos_inner), 1.0f);
   float s = length(vec3(l.shadow_view_proj[0][0], l.shadow_view_proj[1][0], l.shadow_view_proj[2][0]));
   float texel = 2.0f * h.w / (s * float(dst_map_tile_extent(l.cos_inner, frame.size.zw).x));
-  return dst_shadowed(light, h.w > 0.0f && texel > 0.0f ? world + n * texel : world, l);
+  float offset = texel * float(1 + dst_shadow_filter_radius);
+  return dst_shadowed(light, h.w > 0.0f && offset > 0.0f ? world + n * offset : world, l);
 }
 #endif
 

@@ -120,6 +120,13 @@ inline void add_shadow_layout(glsl::source& src, shadow_mode mode, glsl::side si
   else glsl::add_layout<opaque_shadow_map>(src, "shadow", o);
 }
 
+// A lookup's shadow map (its read side) and the radius of its filter in texels (options::shadow_filter),
+// a constant the lookup's loops unroll on.
+inline void add_shadow_lookup(glsl::source& src, shadow_mode mode, const options& o) {
+  add_shadow_layout(src, mode, glsl::side::read);
+  src.add("const int dst_shadow_filter_radius = " + std::to_string(std::max(o.shadow_filter, 1) / 2) + ";\n", __FILE__, __LINE__);
+}
+
 // The switches of a shadow lookup (or of a shadow map's pass).
 inline std::vector<std::string> shadow_switches(shadow_mode mode) {
   if (mode == shadow_mode::off) return {};
@@ -242,7 +249,7 @@ inline result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode 
   glsl::layout_options write;
   write.sides = glsl::side::write;
   add_light_layout(p.fragment, "light", o, write);
-  if (mode != shadow_mode::off) pass_detail::add_shadow_layout(p.fragment, mode, glsl::side::read);
+  if (mode != shadow_mode::off) pass_detail::add_shadow_lookup(p.fragment, mode, o);
   if (mode == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
   if (auto ok = pass_detail::finish(p.fragment, shaders, {"lighting.glsl", "light.frag.glsl"}, switches); !ok) return failure{ok.error()};
   return p;
@@ -362,7 +369,7 @@ inline result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode s
   glsl::source src = pass_source();
   std::string hook;
   if (shadows != shadow_mode::off) {
-    pass_detail::add_shadow_layout(src, shadows, glsl::side::read);
+    pass_detail::add_shadow_lookup(src, shadows, o);
     if (shadows == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(src);
     if (auto ok = pass_detail::finish(src, shaders, {"lighting.glsl"}, pass_detail::shadow_switches(shadows)); !ok) return failure{ok.error()};
     // The light's own entry in the frame's lights holds its shadow map's matrix (particle_plan's lights).
@@ -385,7 +392,7 @@ inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mo
     if (shadows != shadow_mode::off) {
       for (const std::string& s : pass_detail::shadow_switches(shadows)) switches.push_back(s);
       if (auto ok = shaders.add_to(p.fragment, "shadow_layers.glsl", switches); !ok) return failure{ok.error()};
-      pass_detail::add_shadow_layout(p.fragment, shadows, glsl::side::read);
+      pass_detail::add_shadow_lookup(p.fragment, shadows, o);
       if (shadows == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
     }
   } else {
@@ -434,7 +441,7 @@ inline result<pass_sources> forward_pass(const pass_shaders& shaders, forward_st
   if (stage == forward_stage::light) {
     for (const std::string& s : pass_detail::shadow_switches(mode)) switches.push_back(s);
     for (const std::string& s : pass_detail::light_switches(o)) switches.push_back(s);
-    if (mode != shadow_mode::off) pass_detail::add_shadow_layout(p.fragment, mode, glsl::side::read);
+    if (mode != shadow_mode::off) pass_detail::add_shadow_lookup(p.fragment, mode, o);
   }
   glsl::add_interlace<pass_detail::I>(p.fragment);
   std::vector<std::string> files;

@@ -67,6 +67,10 @@ struct options {
   // self-shadowing ("acne") at the cost of light leaking under occluders that touch their receiver. A
   // fraction, so that a scene scaled uniformly keeps its shadows.
   float shadow_bias = 0.005f;
+  // Soft shadows: each lookup averages Eq. 3.1 over this many texels a side around the receiver's (odd; 1:
+  // the thesis's hard shadows), each texel with its own interlace partner, so that a glass texel is only
+  // ever paired with the opaque one beside it. The receiver moves a texel along its normal for each ring.
+  int shadow_filter = 1;
   int shadow_size = 512;
   shadow_mode shadows = shadow_mode::transparent;  // for spot lights that cast them
   // Light through glass: the thesis's min(I_L, C) (Eq. 3.2), or the physically based I_L C.
