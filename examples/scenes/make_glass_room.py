@@ -119,9 +119,6 @@ def main():
     total, full_share = share(full)
     # Turn the first n glass objects of each shape opaque, for the counts that come closest to 17%.
     by_shape = {}
-    # Glass shelves over the tables: coloured shadows on the table tops and the floor.
-    for x in (-1.2, 1.2):
-        glass.append({"shape": "pane", "size": [1.6, 1.0], "position": [x, 1.9, 0.1], "rotation_x": -90})
     for i, obj in enumerate(glass):
         by_shape.setdefault(obj["shape"], []).append(i)
     shapes = sorted(by_shape)
