@@ -72,7 +72,7 @@ struct options {
   // ever paired with the opaque one beside it. The receiver moves a texel along its normal for each ring.
   int shadow_filter = 1;
   int shadow_size = 512;
-  shadow_mode shadows = shadow_mode::transparent;  // for spot lights that cast them
+  shadow_mode shadows = shadow_mode::transparent;  // for the lights that cast them, of every kind
   // Light through glass: the thesis's min(I_L, C) (Eq. 3.2), or the physically based I_L C.
   bool physical_transmittance = false;
   int frames = 1;  // frames rendered with the same resources; times are their medians
