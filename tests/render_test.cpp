@@ -682,6 +682,35 @@ void floor_pixels(const frame& f, const scene& s, const options& o, Visit&& visi
       visit(i, glm::vec3(h) / h.w);
     }
 }
+
+// How many floor pixels check_pane_shadow found in the shadow, black behind the opaque pane, and outside.
+struct pane_shadow {
+  std::size_t in_shadow = 0, black = 0, lit = 0;
+};
+
+// Walks the floor of frame `glass` (scene s, with a coloured pane) beside frame `wall` (the pane opaque):
+// where `inside(p)` (well within the pane's shadow) the light is `want(p)` within 2/255 and, where `wall`
+// shows the floor too, black; where `outside(p)` (well beyond it) `full(light, p)` checks the full light.
+template <class Inside, class Want, class Outside, class Full>
+pane_shadow check_pane_shadow(const frame& glass, const frame& wall, const scene& s, const options& o, Inside inside,
+                              Want want, Outside outside, Full full) {
+  pane_shadow n;
+  floor_pixels(glass, s, o, [&](std::size_t i, glm::vec3 p) {
+    if (inside(p)) {
+      ++n.in_shadow;
+      const glm::vec3 got = light_at(glass, i).light, w = want(p);
+      for (int c = 0; c < 3; ++c) CHECK(got[c] == Approx(w[c]).margin(2.0 / 255.0));
+      if (gbuffer_at(wall, i).diffuse == glm::vec3(1.0f)) {
+        ++n.black;
+        CHECK(light_at(wall, i).light == glm::vec3(0.0f));
+      }
+    } else if (outside(p)) {
+      ++n.lit;
+      full(light_at(glass, i).light, p);
+    }
+  });
+  return n;
+}
 }  // namespace
 
 TEST_CASE("a coloured pane casts the shadow Eq. 3.1 predicts, an opaque one a black shadow", "[render][shadow]") {
@@ -695,29 +724,15 @@ TEST_CASE("a coloured pane casts the shadow Eq. 3.1 predicts, an opaque one a bl
     INFO(name(b));
     // Floor texels (white, opaque) whose world position lies in the pane's shadow, a 1.5-wide square
     // under the light: their light is N.L min(I_L, C)(1 - alpha) = N.L C / 2, since I_L > 1 > C there;
-    // behind the opaque pane it is 0.
-    std::size_t in_shadow = 0, lit = 0, black = 0;
-    floor_pixels(*glass, glass_scene, o, [&](std::size_t i, glm::vec3 p) {
-      const float n_dot_l = glm::normalize(glm::vec3(0.0f, 3.0f, 0.0f) - p).y;
-      if (std::fabs(p.x) < 0.7f && std::fabs(p.z) < 0.7f) {
-        ++in_shadow;
-        const glm::vec3 l = light_at(*glass, i).light, want = n_dot_l * colour * 0.5f;
-        CHECK(l.x == Approx(want.x).margin(2.0 / 255.0));
-        CHECK(l.y == Approx(want.y).margin(2.0 / 255.0));
-        CHECK(l.z == Approx(want.z).margin(2.0 / 255.0));
-        // Where the camera sees the floor past the opaque pane too, its shadow is black.
-        if (gbuffer_at(*wall, i).diffuse == glm::vec3(1.0f)) {
-          ++black;
-          CHECK(light_at(*wall, i).light == glm::vec3(0.0f));
-        }
-      } else if ((std::fabs(p.x) > 0.8f || std::fabs(p.z) > 0.8f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f) {
-        ++lit;
-        CHECK(light_at(*glass, i).light.x > 0.9f);  // the full light, clamped by the RGBA8 light buffer
-      }
-    });
-    CHECK(in_shadow > 50);
-    CHECK(black > 20);
-    CHECK(lit > 500);
+    // behind the opaque pane it is 0; outside it the full light, clamped by the RGBA8 light buffer.
+    const pane_shadow n = check_pane_shadow(
+        *glass, *wall, glass_scene, o, [](glm::vec3 p) { return std::fabs(p.x) < 0.7f && std::fabs(p.z) < 0.7f; },
+        [&](glm::vec3 p) { return glm::normalize(glm::vec3(0.0f, 3.0f, 0.0f) - p).y * colour * 0.5f; },
+        [](glm::vec3 p) { return (std::fabs(p.x) > 0.8f || std::fabs(p.z) > 0.8f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f; },
+        [](glm::vec3 light, glm::vec3) { CHECK(light.x > 0.9f); });
+    CHECK(n.in_shadow > 50);
+    CHECK(n.black > 20);
+    CHECK(n.lit > 500);
   }
 }
 
@@ -768,24 +783,15 @@ TEST_CASE("a directional light casts a pane's coloured shadow from an orthograph
     auto wall = draw(b, directional(1.0f), o);
     if (!glass || !wall) continue;
     INFO(name(b));
-    std::size_t in_shadow = 0, lit = 0, black = 0;
-    floor_pixels(*glass, glass_scene, o, [&](std::size_t i, glm::vec3 p) {
-      if (std::fabs(p.x) < 0.4f && std::fabs(p.z) < 0.4f) {
-        ++in_shadow;  // N.L is 1: the light straight down on the floor
-        const glm::vec3 l = light_at(*glass, i).light, want = colour * 0.5f;
-        for (int c = 0; c < 3; ++c) CHECK(l[c] == Approx(want[c]).margin(2.0 / 255.0));
-        if (gbuffer_at(*wall, i).diffuse == glm::vec3(1.0f)) {
-          ++black;
-          CHECK(light_at(*wall, i).light == glm::vec3(0.0f));
-        }
-      } else if ((std::fabs(p.x) > 0.6f || std::fabs(p.z) > 0.6f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f) {
-        ++lit;
-        CHECK(light_at(*glass, i).light.x > 0.9f);
-      }
-    });
-    CHECK(in_shadow > 30);
-    CHECK(black > 10);
-    CHECK(lit > 500);
+    // N.L is 1 everywhere: the light straight down on the floor.
+    const pane_shadow n = check_pane_shadow(
+        *glass, *wall, glass_scene, o, [](glm::vec3 p) { return std::fabs(p.x) < 0.4f && std::fabs(p.z) < 0.4f; },
+        [&](glm::vec3) { return colour * 0.5f; },
+        [](glm::vec3 p) { return (std::fabs(p.x) > 0.6f || std::fabs(p.z) > 0.6f) && glm::length(glm::vec2(p.x, p.z)) < 2.0f; },
+        [](glm::vec3 light, glm::vec3) { CHECK(light.x > 0.9f); });
+    CHECK(n.in_shadow > 30);
+    CHECK(n.black > 10);
+    CHECK(n.lit > 500);
     if (first) CHECK(rmse(first->final_image, glass->final_image) < 1.0);
     else first = std::move(*glass);
   }
@@ -822,31 +828,28 @@ TEST_CASE("a point light casts a pane's coloured shadow across the faces of its 
     auto wall = draw(b, cube_scene(1.0f), o);
     if (!glass || !wall) continue;
     INFO(name(b));
-    int in_shadow[6] = {}, black = 0, lit = 0;
-    floor_pixels(*glass, glass_scene, o, [&](std::size_t i, glm::vec3 p) {
-      // Where the ray from p to the light crosses the pane's plane, halfway up, in the pane's coordinates.
+    // Where the ray from p to the light crosses the pane's plane, halfway up, in the pane's coordinates.
+    auto on_pane = [&](glm::vec3 p) {
       const glm::vec2 q = glm::abs(glm::vec2(at.x + p.x, at.z + p.z) * 0.5f - glm::vec2(centre.x, centre.z));
-      const float distance = glm::length(at - p);
-      const float n_dot_l = (at.y - p.y) / distance;
-      const float i_l = l.intensity * shader::dst_attenuation(distance, l.range);
-      if (std::max(q.x, q.y) < half - 0.05f) {
-        ++in_shadow[shader::dst_cube_face(p - at)];
-        const glm::vec3 got = light_at(*glass, i).light, want = n_dot_l * glm::min(glm::vec3(i_l), colour) * 0.5f;
-        for (int c = 0; c < 3; ++c) CHECK(got[c] == Approx(want[c]).margin(2.0 / 255.0));
-        if (gbuffer_at(*wall, i).diffuse == glm::vec3(1.0f)) {
-          ++black;
-          CHECK(light_at(*wall, i).light == glm::vec3(0.0f));
-        }
-      } else if (std::max(q.x, q.y) > half + 0.05f && distance < 2.0f) {
-        ++lit;
-        CHECK(light_at(*glass, i).light.x == Approx(std::min(1.0f, n_dot_l * i_l)).margin(2.0 / 255.0));
-      }
+      return std::max(q.x, q.y);
+    };
+    auto light_in = [&](glm::vec3 p) { return l.intensity * shader::dst_attenuation(glm::length(at - p), l.range); };
+    auto n_dot_l = [&](glm::vec3 p) { return (at.y - p.y) / glm::length(at - p); };
+    auto inside = [&](glm::vec3 p) { return on_pane(p) < half - 0.05f; };
+    const pane_shadow n = check_pane_shadow(
+        *glass, *wall, glass_scene, o, inside,
+        [&](glm::vec3 p) { return n_dot_l(p) * glm::min(glm::vec3(light_in(p)), colour) * 0.5f; },
+        [&](glm::vec3 p) { return on_pane(p) > half + 0.05f && glm::length(at - p) < 2.0f; },
+        [&](glm::vec3 light, glm::vec3 p) { CHECK(light.x == Approx(std::min(1.0f, n_dot_l(p) * light_in(p))).margin(2.0 / 255.0)); });
+    int faces[6] = {};
+    floor_pixels(*glass, glass_scene, o, [&](std::size_t, glm::vec3 p) {
+      if (inside(p)) ++faces[shader::dst_cube_face(p - at)];
     });
-    CHECK(in_shadow[3] > 15);  // -y
-    CHECK(in_shadow[0] > 15);  // +x
-    CHECK(in_shadow[4] > 15);  // +z
-    CHECK(black > 30);
-    CHECK(lit > 300);
+    CHECK(faces[3] > 15);  // -y
+    CHECK(faces[0] > 15);  // +x
+    CHECK(faces[4] > 15);  // +z
+    CHECK(n.black > 30);
+    CHECK(n.lit > 300);
     if (first) CHECK(rmse(first->final_image, glass->final_image) < 1.0);
     else first = std::move(*glass);
   }
