@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <string>
 
 #include <dstrans/dstrans.hpp>
 #include <dstrans/light_volume.hpp>
@@ -683,6 +684,12 @@ void floor_pixels(const frame& f, const scene& s, const options& o, Visit&& visi
     }
 }
 
+// How many of scene s's features are effect `what` for the reason `why`.
+std::size_t count_feature(const scene& s, effect what, const std::string& why) {
+  const std::vector<feature> found = scene_features(s);
+  return std::size_t(std::count_if(found.begin(), found.end(), [&](const feature& f) { return f.what == what && f.why == why; }));
+}
+
 // How many floor pixels check_pane_shadow found in the shadow, black behind the opaque pane, and outside.
 struct pane_shadow {
   std::size_t in_shadow = 0, black = 0, lit = 0;
@@ -772,10 +779,8 @@ TEST_CASE("a directional light casts a pane's coloured shadow from an orthograph
     return s;
   };
   const scene glass_scene = directional(0.5f);
-  const std::vector<feature> found = scene_features(glass_scene);
-  CHECK(std::count_if(found.begin(), found.end(), [](const feature& f) {
-          return f.what == effect::transparent_shadows && f.why == "lights[0] casts shadows and reaches objects[1], which is transparent";
-        }) == 1);
+  CHECK(count_feature(glass_scene, effect::transparent_shadows,
+                      "lights[0] casts shadows and reaches objects[1], which is transparent") == 1);
   const options o = small(96, 96);
   std::optional<frame> first;
   for (backend b : backends) {
@@ -816,10 +821,7 @@ TEST_CASE("a point light casts a pane's coloured shadow across the faces of its 
     return s;
   };
   const scene glass_scene = cube_scene(0.5f);
-  const std::vector<feature> found = scene_features(glass_scene);
-  CHECK(std::count_if(found.begin(), found.end(), [](const feature& f) {
-          return f.what == effect::shadows && f.why == "lights[0] is a point light that casts shadows";
-        }) == 1);
+  CHECK(count_feature(glass_scene, effect::shadows, "lights[0] is a point light that casts shadows") == 1);
   const options o = small(96, 96);
   const light& l = glass_scene.lights[0];
   std::optional<frame> first;
