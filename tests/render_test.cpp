@@ -173,7 +173,8 @@ TEST_CASE("GL and Vulkan render the same image, at even and odd sizes, with ever
 }
 
 // The recordings of tests/regression/record.sh, made by `dstrans render` with its defaults: each example
-// scene under each technique (and glass_room under the example post chain) at 160x90 on both backends.
+// scene under each technique (and glass_room under the example post chain, its sun and lamp variants with
+// 5 x 5 soft shadows) at 160x90 on both backends.
 // A change that moves no pixel keeps them; one that means to move some records them again and says why.
 TEST_CASE("every example scene and technique renders as its recording", "[render][regression]") {
   struct recorded {
@@ -196,6 +197,11 @@ TEST_CASE("every example scene and technique renders as its recording", "[render
   options post = small(160, 90);
   post.shadow_size = 1024;
   cases.push_back({"glass_room_post", "glass_room.json", post, true});
+  for (const std::string lit : {"glass_room_sun", "glass_room_lamp"}) {  // soft shadows from each light kind
+    options soft = post;
+    soft.shadow_filter = 5;
+    cases.push_back({lit + "_soft", lit + ".json", soft, false});
+  }
   auto chain = load_post_chain(std::string(DSTRANS_SOURCE_DIR) + "/examples/post_chain.json");
   REQUIRE(chain);
   std::map<std::string, render::image> drawn;  // each case's GL image, for the Vulkan one to match

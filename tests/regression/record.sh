@@ -1,6 +1,7 @@
 #!/bin/sh
-# Records the regression images: the final image of every example scene under every technique, and of
-# glass_room under the example post chain, at 160x90 on both backends, as `dstrans render` makes them.
+# Records the regression images: the final image of every example scene under every technique, of
+# glass_room under the example post chain and of its sun and lamp variants with 5 x 5 soft shadows, at
+# 160x90 on both backends, as `dstrans render` makes them.
 # render_test.cpp's [regression] case renders the same frames and compares them with these files.
 #   tests/regression/record.sh build/tools/dstrans
 set -eu
@@ -25,4 +26,7 @@ for backend in gl vk; do
   done
   record "${backend}_glass_room_post" "$root/examples/scenes/glass_room.json" --backend $backend \
     --post "$root/examples/post_chain.json"
+  for s in glass_room_sun glass_room_lamp; do
+    record "${backend}_${s}_soft" "$root/examples/scenes/$s.json" --backend $backend --shadow-filter 5
+  done
 done
