@@ -17,11 +17,13 @@ MAKEFLAGS += --no-print-directory
 # packages) for shaders, Catch2 for the tests; ccache keeps rebuilds cheap.
 # GL through EGL and Vulkan on Mesa (llvmpipe, lavapipe) with the Khronos validation layer, and
 # nlohmann-json for the command line, stb for PNG files, matplotlib for the benchmark's plot, GLFW and
-# Xvfb for the viewer and its test. `make test` fails when CMake finds a package this list does not install.
+# Xvfb for the viewer and its test, tinygltf for glTF scenes and assimp's glTF test models for their
+# tests. `make test` fails when CMake finds a package this list does not install.
 PACKAGES := g++ make cmake ccache libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross \
             libspirv-cross-c-shared-dev catch2 \
             libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri mesa-vulkan-drivers libvulkan-dev \
-            vulkan-validationlayers nlohmann-json3-dev libstb-dev python3-matplotlib libglfw3-dev xvfb xauth
+            vulkan-validationlayers nlohmann-json3-dev libstb-dev python3-matplotlib libglfw3-dev xvfb xauth \
+            libtinygltf-dev assimp-testmodels
 
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 

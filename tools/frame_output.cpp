@@ -5,8 +5,12 @@
 
 #include <nlohmann/json.hpp>
 
+// Static: a PNG-only stb_image with external names would stand in for the full one a shared library
+// (tinygltf's) calls, and its JPEG images would fail to decode.
+#define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
+#define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_PNG
 #include <stb/stb_image.h>

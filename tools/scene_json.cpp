@@ -16,6 +16,7 @@
 #include <sys/stat.h>
 
 #include "json_input.hpp"
+#include "scene_gltf.hpp"
 
 namespace dstrans {
 
@@ -372,8 +373,7 @@ result<scene> parse_scene(const std::string& text, const std::string& name, cons
   }
 }
 
-namespace {
-result<std::string> read_text(const std::string& path, const char* what, std::size_t limit) {
+result<std::string> read_input_file(const std::string& path, const char* what, std::size_t limit) {
   struct stat st {};
   if (stat(path.c_str(), &st) != 0) return failure{path + ": cannot read the " + what + ": " + std::strerror(errno)};
   if (S_ISDIR(st.st_mode)) return failure{path + ": a folder, not a " + what};
@@ -381,16 +381,16 @@ result<std::string> read_text(const std::string& path, const char* what, std::si
   if (std::size_t(st.st_size) > limit)
     return failure{path + ": " + std::to_string(st.st_size) + " bytes, more than a " + what + " may have (" +
                    std::to_string(limit) + ")"};
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) return failure{path + ": cannot read the " + what};
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
 }
-}  // namespace
 
 result<scene> load_scene(const std::string& path, const scene_budget& budget) {
-  auto text = read_text(path, "scene file", budget.file_bytes);
+  if (is_gltf_path(path)) return load_gltf(path, budget);
+  auto text = read_input_file(path, "scene file", budget.file_bytes);
   if (!text) return failure{text.error()};
   return parse_scene(*text, path, budget);
 }
@@ -403,7 +403,7 @@ std::size_t scene_bytes(const scene& s) {
 }
 
 result<std::vector<post_effect>> load_post_chain(const std::string& path) {
-  auto text = read_text(path, "post-processing chain", scene_budget{}.file_bytes);
+  auto text = read_input_file(path, "post-processing chain", scene_budget{}.file_bytes);
   if (!text) return failure{text.error()};
   return parse_post_chain(*text, path);
 }

@@ -52,10 +52,13 @@ inline constexpr std::size_t bytes_per_vertex = 256, bytes_per_particle = 1024, 
 // The estimate for a built scene (its vertices, particles and lights).
 std::size_t scene_bytes(const scene& s);
 
-// The scene in file `path`, or a sentence naming the file and field that is wrong.
+// The scene in file `path` (JSON, or glTF where the name ends .gltf or .glb: scene_gltf.hpp), or a
+// sentence naming the file and field that is wrong.
 result<scene> load_scene(const std::string& path, const scene_budget& budget = {});
 // The scene in JSON text `text`; `name` prefixes error messages.
 result<scene> parse_scene(const std::string& text, const std::string& name, const scene_budget& budget = {});
+// The bytes of plain file `path` (a `what`, as errors name it), refused unread above `limit` bytes.
+result<std::string> read_input_file(const std::string& path, const char* what, std::size_t limit);
 // A post-processing chain alone: a file or text of {"post": [...]}, to run after any scene.
 result<std::vector<post_effect>> load_post_chain(const std::string& path);
 result<std::vector<post_effect>> parse_post_chain(const std::string& text, const std::string& name);
