@@ -25,6 +25,7 @@
 #include <dstrans_spirv.hpp>
 
 #include "effect_scenes.hpp"
+#include "gltf_writer.hpp"
 #include <scene_json.hpp>
 
 #include <dstrans_gl.hpp>
@@ -903,6 +904,30 @@ TEST_CASE("soft shadows: the penumbra of a coloured and an opaque pane nears a s
       CHECK(soft_error < 0.4 * hard_error);
       CHECK(soft_error < 0.1);
     }
+}
+
+// A glTF file is drawn as the scene it describes: the coloured pane's shadow scene written as glTF
+// (gltf_writer.hpp) and read back renders as the scene itself, on both backends. glTF has no ambient
+// light, so the loaded scene keeps dstrans's default and the test sets the original's.
+TEST_CASE("a glTF file renders as the scene it describes", "[render][gltf]") {
+  const scene s = shadow_scene(0.5f, glm::vec3(1.0f, 0.5f, 0.25f));
+  gltf_doc d = from_scene(s);
+  const std::string path = d.write("shadow_scene");
+  auto loaded = load_scene(path);
+  std::filesystem::remove(path);
+  INFO((loaded ? "" : loaded.error()));
+  REQUIRE(loaded);
+  loaded->ambient = s.ambient;
+  const options o = small(96, 96);
+  std::optional<frame> first;
+  for (backend b : backends) {
+    auto want = draw(b, s, o), got = draw(b, *loaded, o);
+    if (!want || !got) continue;
+    INFO(name(b));
+    CHECK(rmse(got->final_image, want->final_image) < 1.0);
+    if (first) CHECK(rmse(first->final_image, got->final_image) < 1.0);
+    else first = std::move(*got);
+  }
 }
 
 // The shadow map keeps one transparent layer (Table 3.3): under two stacked panes the light passes the one

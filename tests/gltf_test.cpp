@@ -1,0 +1,427 @@
+// glTF scenes: assimp's test models (valid ones load, broken ones name the element), and small files
+// written here for each mapping of scene_gltf.hpp.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <dstrans/scene.hpp>
+#include <gltf_types.hpp>
+#include <scene_gltf.hpp>
+#include <scene_json.hpp>
+
+#include "gltf_writer.hpp"
+
+using namespace dstrans;
+using json = nlohmann::json;
+
+namespace {
+
+const std::string models = DSTRANS_GLTF_MODELS;  // assimp-testmodels' glTF2 folder
+
+// One triangle in the plane z = 0, facing +z.
+const std::vector<float> triangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+
+result<scene> load(gltf_doc& d, const std::string& name) {
+  const std::string path = d.write(name);
+  auto s = load_gltf(path);
+  std::filesystem::remove(path);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("glTF files are told by their extension", "[scene][gltf]") {
+  CHECK(is_gltf_path("a/b.gltf"));
+  CHECK(is_gltf_path("B.GLB"));
+  CHECK_FALSE(is_gltf_path("scene.json"));
+  CHECK_FALSE(is_gltf_path("gltf"));
+}
+
+TEST_CASE("assimp's glTF test models: the box loads the same from .gltf, .glb and embedded", "[scene][gltf]") {
+  std::vector<scene> boxes;
+  for (const char* file : {"BoxTextured-glTF/BoxTextured.gltf", "BoxTextured-glTF-Binary/BoxTextured.glb",
+                           "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+    auto s = load_scene(models + "/" + file);  // load_scene takes glTF by its extension
+    INFO(file << ": " << (s ? "" : s.error()));
+    REQUIRE(s);
+    REQUIRE(s->objects.size() == 1);
+    CHECK(s->objects[0].geometry.triangles() == 12);
+    const scene_mesh m = flatten(*s);
+    for (const glm::vec3& p : m.positions)
+      for (int c = 0; c < 3; ++c) CHECK(std::fabs(p[c]) == Approx(0.5f));
+    for (const glm::vec3& n : m.normals) CHECK(glm::length(n) == Approx(1.0f));
+    CHECK(s->lights.size() == 1);  // the default light of a file without lights
+    CHECK(s->lights[0].shadows);
+    boxes.push_back(*s);
+  }
+  for (std::size_t i = 1; i < boxes.size(); ++i) {
+    CHECK(flatten(boxes[i]).positions == flatten(boxes[0]).positions);
+    CHECK(boxes[i].materials[0].diffuse == boxes[0].materials[0].diffuse);
+  }
+  // Larger valid models: many nodes and meshes, a camera, strips and fans.
+  for (const char* file : {"2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "cameras/Cameras.gltf", "ClearCoat-glTF/ClearCoatTest.gltf",
+                           "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_05.gltf",
+                           "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_06.gltf", "BoxBadNormals-glTF-Binary/BoxBadNormals.glb"}) {
+    auto s = load_scene(models + "/" + file);
+    INFO(file << ": " << (s ? "" : s.error()));
+    REQUIRE(s);
+    CHECK_FALSE(s->objects.empty());
+    for (const glm::vec3& n : flatten(*s).normals) CHECK(glm::length(n) == Approx(1.0f).margin(1e-4));
+  }
+}
+
+TEST_CASE("assimp's broken glTF test models get an error naming the file and the element", "[scene][gltf][hostile]") {
+  struct broken {
+    const char* file;
+    const char* says;
+  };
+  for (const broken& b : {
+           broken{"BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", ": meshes[0].primitives[0].attributes.POSITION[0]: not a finite position"},
+           broken{"IndexOutOfRange/IndexOutOfRange.gltf", ": meshes[0].primitives[0].indices[0]: 255 is past the 24 vertices of attributes.POSITION"},
+           broken{"IndexOutOfRange/AllIndicesOutOfRange.gltf", ": meshes[0].primitives[0].indices[0]: 65535 is past the 24 vertices"},
+           broken{"IncorrectVertexArrays/Cube.gltf", ": meshes[1].primitives[0]: 35 vertices do not make whole triangles"},
+           broken{"MissingBin/BoxTextured.gltf", "BoxTextured0.bin"},
+           broken{"RecursiveNodes/RecursiveNodes.gltf", ": nodes[0]: the node is its own ancestor"},
+           broken{"SchemaFailures/sceneWrongType.gltf", ": scene: \"hello\" is not an integer from 0"},
+           broken{"TestNoRootNode/NoScene.gltf", ": scene: 0 is not one of the 0 there are"},
+           broken{"TestNoRootNode/SceneWithoutNodes.gltf", ": no triangles to draw in its scene"},
+           broken{"draco/2CylinderEngine.gltf", ": extensionsRequired: KHR_draco_mesh_compression is not an extension dstrans reads"},
+           broken{"wrongTypes/badArray.gltf", ": meshes[0].primitives: an array is needed"},
+           broken{"wrongTypes/badExtension.gltf", ": materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform: an object is needed"},
+           broken{"wrongTypes/badNumber.gltf", ": materials[0].normalTexture.scale: \"not a number\" is not a number"},
+           broken{"wrongTypes/badObject.gltf", ": materials[0].pbrMetallicRoughness: an object is needed"},
+           broken{"wrongTypes/badString.gltf", ": scenes[0].name: a string is needed"},
+           broken{"wrongTypes/badUint.gltf", ".baseColorTexture.index: -1 is not an integer from 0"},
+           broken{"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.gltf",
+                  ": meshes[0].primitives[0].mode: 1 (points or lines) has no surface to shade"}}) {
+    const std::string path = models + "/" + b.file;
+    auto s = load_scene(path);
+    INFO(b.file);
+    REQUIRE_FALSE(s);
+    CHECK_THAT(s.error(), Catch::StartsWith(path + ": ") && Catch::Contains(b.says));
+  }
+  auto zero = load_gltf("/dev/zero");
+  REQUIRE_FALSE(zero);
+  CHECK(zero.error() == "/dev/zero: not a plain file, so not read as a glTF file");
+}
+
+TEST_CASE("glTF geometry: node transforms, strips and fans, flat and repaired normals, sparse and normalized accessors",
+          "[scene][gltf]") {
+  gltf_doc d;
+  const int p = d.positions(triangle);
+  // TRS: scaled by 2, turned 90 degrees about +y, moved by (1, 2, 3).
+  d.mesh({{"attributes", {{"POSITION", p}}}},
+         {{"translation", {1, 2, 3}}, {"rotation", {0, std::sqrt(0.5), 0, std::sqrt(0.5)}}, {"scale", {2, 2, 2}}});
+  // A strip and a fan of four vertices: two triangles each, wound as the first.
+  const int quad = d.positions({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
+  d.mesh({{"attributes", {{"POSITION", quad}}}, {"mode", 5}});
+  d.mesh({{"attributes", {{"POSITION", quad}}}, {"mode", 6}, {"indices", d.indices({0, 1, 3, 2})}});
+  // A zero normal takes its triangle's; a sparse accessor replaces vertex 2 with (0, 2, 0).
+  const int normals = d.positions({0, 0, 1, 0, 0, 0, 0, 0, 1});
+  d.mesh({{"attributes", {{"POSITION", p}, {"NORMAL", normals}}}});
+  json sparse = d.j["accessors"][std::size_t(p)];
+  const int rows = d.indices({2}), values = d.positions({0, 2, 0});
+  sparse["sparse"] = {{"count", 1},
+                      {"indices", {{"bufferView", d.j["accessors"][std::size_t(rows)]["bufferView"]}, {"componentType", 5125}}},
+                      {"values", {{"bufferView", d.j["accessors"][std::size_t(values)]["bufferView"]}}}};
+  d.j["accessors"].push_back(sparse);
+  d.mesh({{"attributes", {{"POSITION", int(d.j["accessors"].size()) - 1}}}});
+  // Normalized unsigned bytes: 255 is 1.
+  const int bytes = d.add(std::vector<std::uint8_t>{0, 0, 0, 0, 255, 0, 0, 0, 0, 255, 0, 0}, "VEC3", 5121);
+  d.j["accessors"][std::size_t(bytes)]["normalized"] = true;
+  d.j["accessors"][std::size_t(bytes)]["count"] = 3;
+  d.j["bufferViews"][d.j["accessors"][std::size_t(bytes)]["bufferView"].get<std::size_t>()]["byteStride"] = 4;
+  d.mesh({{"attributes", {{"POSITION", bytes}}}});
+  auto s = load(d, "geometry");
+  INFO((s ? "" : s.error()));
+  REQUIRE(s);
+  REQUIRE(s->objects.size() == 6);
+  auto world = [&](std::size_t o, std::size_t v) { return glm::vec3(s->objects[o].transform * glm::vec4(s->objects[o].geometry.positions[v], 1.0f)); };
+  // Without NORMAL: flat, the face's normal (here turned to +x), three vertices of its own per triangle.
+  CHECK(glm::distance(world(0, 1), glm::vec3(1, 2, 1)) < 1e-5f);  // (1,0,0) scaled to 2, turned to -z... then moved
+  CHECK(glm::distance(world(0, 2), glm::vec3(1, 4, 3)) < 1e-5f);
+  CHECK(glm::distance(glm::mat3(s->objects[0].transform) * s->objects[0].geometry.normals[0], glm::vec3(2, 0, 0)) < 1e-5f);
+  for (std::size_t o : {std::size_t(1), std::size_t(2)}) {
+    const shape& g = s->objects[o].geometry;
+    REQUIRE(g.triangles() == 2);
+    for (std::size_t t = 0; t < 6; t += 3) {
+      const glm::vec3 a = g.positions[g.indices[t]], b = g.positions[g.indices[t + 1]], c = g.positions[g.indices[t + 2]];
+      CHECK(glm::cross(b - a, c - a).z > 0.0f);  // every triangle faces +z, as the first
+    }
+  }
+  CHECK(s->objects[3].geometry.normals[1] == glm::vec3(0, 0, 1));
+  CHECK(s->objects[4].geometry.positions[2] == glm::vec3(0, 2, 0));
+  CHECK(s->objects[4].geometry.positions[1] == glm::vec3(1, 0, 0));
+  CHECK(s->objects[5].geometry.positions[1] == glm::vec3(1, 0, 0));
+  CHECK(s->objects[5].geometry.positions[2] == glm::vec3(0, 1, 0));
+}
+
+TEST_CASE("glTF materials: alpha modes, transmission as glass, ior, Beer's law, roughness and metallic", "[scene][gltf]") {
+  gltf_doc d;
+  const int p = d.positions(triangle);
+  auto add = [&](json m) {
+    d.j["materials"].push_back(m);
+    d.mesh({{"attributes", {{"POSITION", p}}}, {"material", d.j["materials"].size() - 1}});
+  };
+  add({{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 0.5}}}}});  // OPAQUE: alpha 1
+  add({{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 0.5}}, {"roughnessFactor", 0.5}, {"metallicFactor", 0.0}}}});
+  add({{"alphaMode", "MASK"}, {"alphaCutoff", 0.6}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.5}}}}});  // cut away
+  add({{"alphaMode", "MASK"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.5}}}}});  // kept, opaque
+  add({{"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.9, 0.9, 1}}, {"roughnessFactor", 0.0}, {"metallicFactor", 1.0}}},
+       {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.75}}},
+                       {"KHR_materials_volume", {{"thicknessFactor", 0.5}, {"attenuationDistance", 0.25}, {"attenuationColor", {0.5, 1.0, 0.25}}}}}}});
+  add({{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}, {"KHR_materials_ior", {{"ior", 1.0}}}}}});
+  auto s = load(d, "materials");
+  INFO((s ? "" : s.error()));
+  REQUIRE(s);
+  REQUIRE(s->objects.size() == 5);  // the cut-away one is not drawn
+  auto of = [&](std::size_t o) { return s->materials[s->objects[o].material]; };
+  CHECK(of(0).alpha == 1.0f);
+  CHECK(of(0).diffuse == glm::vec3(0.2f, 0.4f, 0.6f));
+  CHECK(of(1).alpha == 0.5f);
+  CHECK(of(1).transparent());
+  CHECK(of(1).spec_power == Approx(2.0f / 0.0625f - 2.0f));  // 2 / r^4 - 2
+  CHECK(of(1).spec_intensity == Approx(0.04f * 0.5f));
+  CHECK(of(2).alpha == 1.0f);
+  CHECK(of(3).alpha == Approx(0.25f));  // 1 - transmission
+  CHECK(of(3).refractive);
+  CHECK(of(3).spec_power == 255.0f);
+  CHECK(of(3).spec_intensity == Approx(1.0f));
+  // attenuationColor ^ (0.5 / 0.25): squared.
+  CHECK(of(3).diffuse.x == Approx(0.9f * 0.25f));
+  CHECK(of(3).diffuse.y == Approx(0.9f));
+  CHECK(of(3).diffuse.z == Approx(0.9f * 0.0625f));
+  CHECK(of(4).alpha == 0.0f);
+  CHECK_FALSE(of(4).refractive);  // ior 1 bends nothing
+}
+
+TEST_CASE("glTF cameras and punctual lights, and the defaults of a file without them", "[scene][gltf]") {
+  gltf_doc d;
+  d.mesh({{"attributes", {{"POSITION", d.positions(triangle)}}}});
+  d.j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.01}, {"zfar", 1e6}}}}};
+  // Looking down -z from (0.5, 0.5, 4): the planes close in on the triangle's bounding sphere.
+  d.root({{"camera", 0}, {"translation", {0.5, 0.5, 4}}});
+  d.j["extensionsUsed"] = {"KHR_lights_punctual"};
+  d.j["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "directional"}, {"color", {1, 0.5, 0.25}}, {"intensity", 3}},
+      {{"type", "point"}, {"intensity", 16}, {"range", 8}},
+      {{"type", "spot"}, {"intensity", 1}, {"spot", {{"innerConeAngle", 0.25}, {"outerConeAngle", 0.5}}}}};
+  // Pointing down: a turn of -90 degrees about x takes -z to -y.
+  const json down = {std::sin(-0.25 * M_PI), 0, 0, std::cos(-0.25 * M_PI)};
+  d.root({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"rotation", down}});
+  d.root({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}, {"translation", {1, 2, 3}}});
+  d.root({{"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}, {"rotation", down}, {"translation", {0, 5, 0}}});
+  auto s = load(d, "views");
+  INFO((s ? "" : s.error()));
+  REQUIRE(s);
+  CHECK(s->view.position == glm::vec3(0.5f, 0.5f, 4.0f));
+  CHECK(glm::distance(s->view.target, glm::vec3(0.5f, 0.5f, 3.0f)) < 1e-6f);
+  CHECK(s->view.fov_y == Approx(glm::degrees(0.5f)));
+  const float radius = 0.5f * std::sqrt(2.0f), distance = 4.0f;  // the triangle's bounds are the unit square
+  CHECK(s->view.far_plane == Approx(distance + 1.01f * radius));
+  CHECK(s->view.near_plane == Approx(distance - 1.01f * radius));
+  REQUIRE(s->lights.size() == 3);
+  const light &sun = s->lights[0], &lamp = s->lights[1], &spot = s->lights[2];
+  CHECK(sun.kind == light_kind::directional);
+  CHECK(glm::distance(sun.direction, glm::vec3(0, -1, 0)) < 1e-5f);
+  CHECK(sun.colour == glm::vec3(1.0f, 0.5f, 0.25f));
+  CHECK(sun.intensity == 3.0f);
+  CHECK(sun.shadows);
+  CHECK(lamp.kind == light_kind::point);
+  CHECK(lamp.position == glm::vec3(1, 2, 3));
+  CHECK(lamp.range == 8.0f);
+  // At a quarter of the range the falloffs agree: 16 / 2^2 = 4.
+  CHECK(lamp.intensity * std::pow(1.0f - 0.25f, 2.0f) == Approx(16.0f / 4.0f));
+  CHECK(spot.kind == light_kind::spot);
+  CHECK(spot.range == Approx(std::sqrt(255.0f)));  // where 1 / d^2 is 1/255
+  CHECK(spot.inner_angle == Approx(glm::degrees(0.25f)));
+  CHECK(spot.outer_angle == Approx(glm::degrees(0.5f)));
+  CHECK(glm::distance(spot.position, glm::vec3(0, 5, 0)) < 1e-5f);
+  // Without a camera or lights: one framing the bounds, and a directional light casting shadows.
+  gltf_doc bare;
+  bare.mesh({{"attributes", {{"POSITION", bare.positions(triangle)}}}});
+  auto b = load(bare, "bare");
+  REQUIRE(b);
+  CHECK(glm::distance(b->view.target, glm::vec3(0.5f, 0.5f, 0.0f)) < 1e-6f);
+  CHECK(b->view.fov_y == 45.0f);
+  CHECK(glm::distance(b->view.position, b->view.target) > 1.0f);
+  REQUIRE(b->lights.size() == 1);
+  CHECK(b->lights[0].kind == light_kind::directional);
+  CHECK(b->lights[0].direction.y < 0.0f);
+  CHECK(b->lights[0].shadows);
+}
+
+TEST_CASE("bad glTF elements get an error naming them, never a crash", "[scene][gltf][hostile]") {
+  struct bad {
+    std::function<void(gltf_doc&)> edit;
+    std::string says;
+  };
+  auto tri = [](gltf_doc& d) { return d.mesh({{"attributes", {{"POSITION", d.positions(triangle)}}}}); };
+  for (const bad& b : std::vector<bad>{
+           {[&](gltf_doc& d) { d.mesh({{"attributes", {{"POSITION", 7}}}}); }, "meshes[0].primitives[0].attributes.POSITION: 7 is not one of the 0 there are"},
+           {[&](gltf_doc& d) { d.mesh({{"attributes", {{"POSITION", d.positions({0, 0, 0, NAN, 0, 0, 0, 1, 0})}}}}); },
+            "meshes[0].primitives[0].attributes.POSITION[1]: not a finite position"},
+           {[&](gltf_doc& d) { d.mesh({{"attributes", {{"POSITION", d.indices({0, 1, 2})}}}}); }, "accessors[0].type: 3 components a vertex are needed"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["accessors"][0]["count"] = 1000;
+            },
+            "accessors[0]: 1000 elements need 12000 bytes of bufferViews[0], which has 36"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["bufferViews"][0]["byteLength"] = 1 << 20;
+            },
+            "bufferViews[0]: bytes 0 to 1048576 are past the 36 of buffers[0]"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["meshes"][0]["primitives"][0]["material"] = 3;
+            },
+            "meshes[0].primitives[0].material: 3 is not one of the 0 there are"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["nodes"][0]["matrix"] = {1, 0, 0};
+            },
+            "nodes[0].matrix: 16 numbers are needed"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["nodes"][0]["children"] = {0};
+            },
+            "nodes[0]: the node is its own ancestor"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["extensionsRequired"] = {"KHR_texture_basisu"};
+            },
+            "extensionsRequired: KHR_texture_basisu is not an extension dstrans reads"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["materials"] = {{{"alphaMode", "CLEAR"}}};
+              d.j["meshes"][0]["primitives"][0]["material"] = 0;
+            },
+            "materials[0].alphaMode: \"CLEAR\" is not OPAQUE, MASK or BLEND"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "spot"}, {"spot", {{"innerConeAngle", 1}, {"outerConeAngle", 0.5}}}}};
+              d.root({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+            },
+            "lights[0].spot: 0 <= innerConeAngle < outerConeAngle <= pi/2 is needed"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.root({{"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+            },
+            "nodes[1].extensions.KHR_lights_punctual.light: 2 is not one of the 0 there are"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0}, {"znear", 0.1}}}}};
+              d.root({{"camera", 0}});
+            },
+            "cameras[0].perspective: 0 < yfov < pi and 0 < znear < zfar (or zfar absent) are needed"},
+           {[&](gltf_doc& d) { d.j["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", "zero"}}}}}}}}; },
+            "meshes[0].primitives[0].attributes.POSITION: \"zero\" is not an integer from 0"},
+       }) {
+    gltf_doc d;
+    b.edit(d);
+    auto s = load(d, "bad");
+    INFO(b.says);
+    REQUIRE_FALSE(s);
+    CHECK_THAT(s.error(), Catch::Contains(b.says));
+  }
+  // The budget, checked as the geometry grows: a mesh held by many nodes.
+  gltf_doc many;
+  tri(many);
+  for (int i = 0; i < 2000; ++i) many.root({{"mesh", 0}});
+  const std::string path = many.write("many");
+  scene_budget small;
+  small.bytes = 1000 * 3 * bytes_per_vertex;
+  auto refused = load_gltf(path, small);
+  std::filesystem::remove(path);
+  REQUIRE_FALSE(refused);
+  CHECK_THAT(refused.error(), Catch::Contains("the scene would take about") && Catch::Contains("(--budget MIB raises it)"));
+  // Not a glTF file at all, and a truncated binary one.
+  const std::string text = (std::filesystem::temp_directory_path() / ("dstrans_" + std::to_string(getpid()) + "_text.gltf")).string();
+  std::ofstream(text) << "{\"asset\": ";
+  auto cut = load_gltf(text);
+  std::filesystem::remove(text);
+  REQUIRE_FALSE(cut);
+  CHECK_THAT(cut.error(), Catch::StartsWith(text + ": "));
+  std::string glb;
+  {
+    std::ifstream in(models + "/BoxTextured-glTF-Binary/BoxTextured.glb", std::ios::binary);
+    glb.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  REQUIRE(glb_json(glb));
+  const std::string half = (std::filesystem::temp_directory_path() / ("dstrans_" + std::to_string(getpid()) + "_half.glb")).string();
+  std::ofstream(half, std::ios::binary) << glb.substr(0, glb.size() / 2);
+  auto truncated = load_gltf(half);
+  std::filesystem::remove(half);
+  REQUIRE_FALSE(truncated);
+  CHECK_THAT(truncated.error(), Catch::StartsWith(half + ": "));
+  CHECK_FALSE(glb_json("glTF"));
+}
+
+TEST_CASE("the glTF schema's types: what tinygltf would read as absent is an error", "[scene][gltf]") {
+  CHECK_FALSE(gltf_json_error(R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0, "matrix": [1]}]})", {}));
+  CHECK(gltf_json_error(R"({"asset": {"version": 2}})", {}) == std::string("asset.version: a string is needed"));
+  CHECK(gltf_json_error(R"({"nodes": [{"children": [0, -1]}]})", {}) == std::string("nodes[0].children[1]: -1 is not an integer from 0"));
+  CHECK(gltf_json_error(R"({"nodes": [{"mesh": 1.5}]})", {}) == std::string("nodes[0].mesh: 1.5 is not an integer from 0"));
+  CHECK_FALSE(gltf_json_error(R"({"nodes": [{"mesh": 1.0}]})", {}));  // JSON Schema's integer
+  CHECK(gltf_json_error(R"({"extensions": {"KHR_lights_punctual": {"lights": [{"intensity": "bright"}]}}})", {}) ==
+        std::string("extensions.KHR_lights_punctual.lights[0].intensity: \"bright\" is not a number"));
+  CHECK(gltf_json_error(R"({"extensionsRequired": ["KHR_materials_ior"]})", {"KHR_materials_ior"}) == std::nullopt);
+  CHECK(gltf_json_error(R"({"extensionsRequired": ["EXT_x"]})", {}) == std::string("extensionsRequired: EXT_x is not an extension dstrans reads"));
+  CHECK(gltf_json_error("[1, 2]", {}) == std::string("the file: an object is needed"));
+  CHECK_FALSE(gltf_json_error("{not json", {}));  // the parser's to report
+}
+
+TEST_CASE("a scene written as glTF reads back as itself", "[scene][gltf]") {
+  auto room = load_scene(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/pane.json");
+  REQUIRE(room);
+  scene s = *room;
+  s.particles.clear();  // glTF has no particle systems
+  gltf_doc d = from_scene(s);
+  auto back = load(d, "pane");
+  INFO((back ? "" : back.error()));
+  REQUIRE(back);
+  REQUIRE(back->objects.size() == s.objects.size());
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    const object &a = s.objects[i], &b = back->objects[i];
+    CHECK(b.geometry.positions == a.geometry.positions);
+    REQUIRE(b.geometry.normals.size() == a.geometry.normals.size());
+    for (std::size_t v = 0; v < a.geometry.normals.size(); ++v)  // made unit length again, within a rounding
+      CHECK(glm::distance(b.geometry.normals[v], a.geometry.normals[v]) < 1e-6f);
+    CHECK(b.geometry.indices == a.geometry.indices);
+    CHECK(b.transform == a.transform);
+    const material &ma = s.materials[a.material], &mb = back->materials[b.material];
+    CHECK(mb.diffuse == ma.diffuse);
+    CHECK(mb.alpha == Approx(ma.alpha));
+    CHECK(mb.refractive == ma.refractive);
+  }
+  REQUIRE(back->lights.size() == s.lights.size());
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const light &a = s.lights[i], &b = back->lights[i];
+    CHECK(b.kind == a.kind);
+    CHECK(b.colour == a.colour);
+    CHECK(b.intensity == Approx(a.intensity));
+    CHECK(glm::distance(b.direction, glm::normalize(a.direction)) < 1e-5f);
+    if (a.kind == light_kind::directional) continue;
+    CHECK(glm::distance(b.position, a.position) < 1e-4f);
+    CHECK(b.range == Approx(a.range));
+    if (a.kind != light_kind::spot) continue;
+    CHECK(b.inner_angle == Approx(a.inner_angle));
+    CHECK(b.outer_angle == Approx(a.outer_angle));
+  }
+  CHECK(glm::distance(back->view.position, s.view.position) < 1e-4f);
+  CHECK(glm::dot(glm::normalize(back->view.target - back->view.position), glm::normalize(s.view.target - s.view.position)) ==
+        Approx(1.0f));
+  CHECK(back->view.fov_y == Approx(s.view.fov_y));
+}
