@@ -21,7 +21,7 @@ const char* const usage =
     "usage: dstrans gen gbuffer <layout> [--side write|read|both] [--first-location N] [--first-binding N]\n"
     "                                  [--glsl-version V]\n"
     "       dstrans gen interlace <predicate> [--glsl-version V]\n"
-    "       dstrans gen pipeline <scene.json> [--out DIR]   every shader the scene's pipeline compiles; with\n"
+    "       dstrans gen pipeline <scene.json|.gltf|.glb> [--out DIR]   every shader the scene's pipeline compiles; with\n"
     "                                       --out one file each (<pass>.vert, <pass>.frag), else all printed\n"
     "layouts:    thesis (Table 3.1), compact (8 bytes, depth from the attachment), light (Table 3.2),\n"
     "            light-rgb (8 bytes, RGB specular), shadow (Table 3.3)\n"

@@ -14,11 +14,12 @@ namespace {
 const char* const usage =
     "usage: dstrans <command> [options]\n"
     "commands:\n"
-    "  gen <what> [options]   print GLSL: gbuffer <layout>, interlace <predicate>, pipeline <scene.json>\n"
+    "  gen <what> [options]   print GLSL: gbuffer <layout>, interlace <predicate>, pipeline <scene>\n"
     "  eval --backend B       evaluate shared formulas by name on cpu, gl or vk (JSON lines)\n"
-    "  plan <scene.json>      the effects a scene calls for, and the passes and targets they need\n"
-    "  render <scene.json>    render a frame and its buffers into --out DIR\n"
+    "  plan <scene>           the effects a scene calls for, and the passes and targets they need\n"
+    "  render <scene>         render a frame and its buffers into --out DIR\n"
     "  bench [--quick]        the thesis's comparisons with times and errors, into --out DIR\n"
+    "a scene is a JSON scene file (examples/scenes) or a glTF 2.0 asset (.gltf, .glb)\n"
     "run 'dstrans <command> --help' for a command's options\n";
 
 }  // namespace

@@ -19,7 +19,7 @@ namespace {
 using json = nlohmann::ordered_json;
 
 const char* const usage =
-    "usage: dstrans plan <scene.json> [--json] [--budget MIB] [--temporal on|off]\n"
+    "usage: dstrans plan <scene.json|.gltf|.glb> [--json] [--budget MIB] [--temporal on|off]\n"
     "the effects the scene calls for (and why), and the passes, render targets and shader switches of the\n"
     "interlaced deferred pipeline that runs exactly those effects, and a frame's passes in the order they run;\n"
     "--temporal on: with temporal interlacing (the previous frame's targets, where the scene has glass)\n";

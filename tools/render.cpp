@@ -20,7 +20,7 @@ namespace dstrans::cli {
 
 namespace {
 const char* const usage =
-    "usage: dstrans render <scene.json> --backend gl|vk --out DIR [--width W --height H] [--technique NAME]\n"
+    "usage: dstrans render <scene.json|.gltf|.glb> --backend gl|vk --out DIR [--width W --height H] [--technique NAME]\n"
     "       [--refraction PIXELS] [--shadows off|opaque|transparent] [--shadow-size N]\n"
     "       [--shadow-bias FRACTION]   a receiver moves this fraction of its distance from the light towards it\n"
     "                           before the shadow test, in linear depth (default 0.005; 0 to 1), so shadows keep\n"

@@ -35,7 +35,7 @@ namespace {
 using namespace dstrans;
 
 const char* const usage =
-    "usage: viewer <scene.json> [--frames N [--out window.png]] [--width W] [--height H] [--shaders DIR]\n";
+    "usage: viewer <scene.json|.gltf|.glb> [--frames N [--out window.png]] [--width W] [--height H] [--shaders DIR]\n";
 
 // What the keys change; a change asks for a new renderer.
 struct settings {
