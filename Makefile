@@ -1,6 +1,7 @@
 # The README's two commands. Both install the Debian packages dstrans needs when some are missing
 # (apt-get update only then), configure, build incrementally, then do their job.
-#   make demo       builds the dstrans command alone and renders glass_room on OpenGL and Vulkan into out/demo/
+#   make demo       builds the dstrans command alone and renders glass_room and the glTF glass_shelf on OpenGL
+#                   and Vulkan into out/demo/
 #   make test       builds and runs every test (ctest) in build/, then again under the sanitizers; one test checks
 #                   that every Debian package the build found is one this Makefile installs
 #   make sanitize   the suite alone under AddressSanitizer, LeakSanitizer and UBSan, in build-sanitize/
@@ -75,6 +76,9 @@ demo: configure
 	@$(BUILD)/tools/dstrans render examples/scenes/glass_room.json --backend gl --out $(OUT) --width 960 --height 540
 	@echo "Rendering it on Vulkan (lavapipe) into $(OUT)/vk/"
 	@$(BUILD)/tools/dstrans render examples/scenes/glass_room.json --backend vk --out $(OUT)/vk --width 960 --height 540
+	@echo "Rendering examples/scenes/glass_shelf.gltf (glTF glass) on OpenGL and Vulkan into $(OUT)/glass_shelf/"
+	@$(BUILD)/tools/dstrans render examples/scenes/glass_shelf.gltf --backend gl --out $(OUT)/glass_shelf --width 960 --height 540
+	@$(BUILD)/tools/dstrans render examples/scenes/glass_shelf.gltf --backend vk --out $(OUT)/glass_shelf/vk --width 960 --height 540
 	@echo "Writing the generated GLSL into $(OUT)/glsl/ and checking it with glslangValidator"
 	@mkdir -p $(OUT)/glsl
 	@$(BUILD)/tools/dstrans gen gbuffer thesis > $(OUT)/glsl/gbuffer_thesis.glsl
@@ -82,7 +86,7 @@ demo: configure
 	@$(BUILD)/tools/dstrans gen gbuffer shadow > $(OUT)/glsl/shadow_map.glsl
 	@$(BUILD)/tools/dstrans gen interlace rows > $(OUT)/glsl/interlace_rows.glsl
 	@for f in $(OUT)/glsl/*.glsl; do glslangValidator -S frag $$f >/dev/null || { echo "glslangValidator rejects $$f"; exit 1; }; done
-	@echo "make demo: $(OUT)/final.png (OpenGL) and $(OUT)/vk/final.png (Vulkan) with their buffers, and the generated GLSL in $(OUT)/glsl/"
+	@echo "make demo: $(OUT)/final.png (OpenGL) and $(OUT)/vk/final.png (Vulkan) with their buffers, glass_shelf.gltf's in $(OUT)/glass_shelf/, and the generated GLSL in $(OUT)/glsl/"
 
 clean:
 	rm -rf $(BUILD) $(SANITIZE_BUILD) out

@@ -174,7 +174,7 @@ TEST_CASE("GL and Vulkan render the same image, at even and odd sizes, with ever
 }
 
 // The recordings of tests/regression/record.sh, made by `dstrans render` with its defaults: each example
-// scene under each technique (and glass_room under the example post chain, its sun and lamp variants with
+// scene (JSON and glTF) under each technique (and glass_room under the example post chain, its sun and lamp variants with
 // 5 x 5 soft shadows) at 160x90 on both backends.
 // A change that moves no pixel keeps them; one that means to move some records them again and says why.
 TEST_CASE("every example scene and technique renders as its recording", "[render][regression]") {
@@ -185,7 +185,7 @@ TEST_CASE("every example scene and technique renders as its recording", "[render
   };
   std::vector<recorded> cases;
   for (const auto& entry : std::filesystem::directory_iterator(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes"))
-    if (entry.path().extension() == ".json")
+    if (entry.path().extension() == ".json" || entry.path().extension() == ".gltf")
       for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward,
                                   render::technique::forward_depth}) {
         options o = small(160, 90);

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Records the regression images: the final image of every example scene under every technique, of
+# Records the regression images: the final image of every example scene (JSON and glTF) under every technique, of
 # glass_room under the example post chain and of its sun and lamp variants with 5 x 5 soft shadows, at
 # 160x90 on both backends, as `dstrans render` makes them.
 # render_test.cpp's [regression] case renders the same frames and compares them with these files.
@@ -18,8 +18,8 @@ record() {  # record NAME ARGS...: renders and keeps final.png as images/NAME.pn
   cp "$work/$name/final.png" "$here/images/$name.png"
 }
 for backend in gl vk; do
-  for scene in "$root"/examples/scenes/*.json; do
-    s=$(basename "$scene" .json)
+  for scene in "$root"/examples/scenes/*.json "$root"/examples/scenes/*.gltf; do
+    s=$(basename "$scene"); s=${s%.*}
     for technique in interlaced peeling forward forward-depth; do
       record "${backend}_${s}_${technique}" "$scene" --backend $backend --technique $technique
     done
