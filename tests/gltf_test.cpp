@@ -425,3 +425,47 @@ TEST_CASE("a scene written as glTF reads back as itself", "[scene][gltf]") {
         Approx(1.0f));
   CHECK(back->view.fov_y == Approx(s.view.fov_y));
 }
+
+TEST_CASE("a scene file places glTF assets among its shapes", "[scene][gltf]") {
+  gltf_doc d;
+  d.j["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.25, 0.5, 0.75, 1.0}}}}}};
+  d.mesh({{"attributes", {{"POSITION", d.positions(triangle)}}}, {"material", 0}}, {{"translation", {0, 0, 1}}});
+  const std::string path = d.write("asset");
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  const std::string file = std::filesystem::path(path).filename().string();
+  auto scene_with = [&](const std::string& object) {
+    return R"({"camera": {"position": [0, 1, 5], "target": [0, 1, 0]},
+               "materials": {"wall": {"diffuse": [0.8, 0.8, 0.8]}},
+               "objects": [{"shape": "box", "size": [1, 1, 1], "material": "wall"}, )" +
+           object + "]}";
+  };
+  // Relative to the scene file's folder: moved by (1, 2, 3), turned 90 degrees about y, scaled by 2.
+  auto s = parse_scene(scene_with(R"({"gltf": ")" + file + R"(", "position": [1, 2, 3], "rotation_y": 90, "scale": 2})"),
+                       folder + "/scene.json");
+  INFO((s ? "" : s.error()));
+  REQUIRE(s);
+  REQUIRE(s->objects.size() == 2);
+  REQUIRE(s->materials.size() == 2);
+  CHECK(s->objects[1].material == 1);
+  CHECK(s->materials[1].diffuse == glm::vec3(0.25f, 0.5f, 0.75f));
+  CHECK(s->lights.empty());  // the asset's default light is not the scene's
+  // The triangle's (1, 0, 0) at z = 1 in the asset: scaled (2, 0, 2), turned (2, 0, -2), moved (3, 2, 1).
+  const glm::vec3 p = glm::vec3(s->objects[1].transform * glm::vec4(s->objects[1].geometry.positions[1], 1.0f));
+  CHECK(glm::distance(p, glm::vec3(3, 2, 1)) < 1e-5f);
+  // A missing asset, a broken one and one over the budget name the object.
+  auto missing = parse_scene(scene_with(R"({"gltf": "no_such.glb"})"), folder + "/scene.json");
+  REQUIRE_FALSE(missing);
+  CHECK_THAT(missing.error(), Catch::StartsWith(folder + "/scene.json: objects[1].gltf: " + folder + "/no_such.glb: cannot read"));
+  auto broken = parse_scene(scene_with(R"({"gltf": ")" + models + R"(/wrongTypes/badArray.gltf"})"), folder + "/scene.json");
+  REQUIRE_FALSE(broken);
+  CHECK_THAT(broken.error(), Catch::EndsWith("objects[1].gltf: " + models + "/wrongTypes/badArray.gltf: meshes[0].primitives: an array is needed"));
+  auto unknown = parse_scene(scene_with(R"({"gltf": ")" + file + R"(", "material": "wall"})"), folder + "/scene.json");
+  REQUIRE_FALSE(unknown);
+  CHECK_THAT(unknown.error(), Catch::Contains("objects[1]"));
+  scene_budget tight;
+  tight.bytes = 26 * bytes_per_vertex;  // the box's 24 vertices fit, the triangle's 3 more do not
+  auto over = parse_scene(scene_with(R"({"gltf": ")" + file + R"("})"), folder + "/scene.json", tight);
+  std::filesystem::remove(path);
+  REQUIRE_FALSE(over);
+  CHECK_THAT(over.error(), Catch::Contains("objects[1].gltf") && Catch::Contains("over the budget"));
+}

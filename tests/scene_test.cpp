@@ -315,3 +315,10 @@ TEST_CASE("a camera looking straight up or down gets a well-defined view", "[sce
   tilted.target = {0.0f, 0.0f, 0.0f};
   CHECK(tilted.up() == glm::vec3(0.0f, 1.0f, 0.0f));  // anything off the vertical keeps +Y
 }
+
+TEST_CASE("budget messages give MiB rounded up", "[scene]") {
+  CHECK(mib(0) == "0");
+  CHECK(mib(1) == "1");
+  CHECK(mib(std::size_t(1) << 20) == "1");
+  CHECK(mib((std::size_t(1) << 20) + 1) == "2");
+}

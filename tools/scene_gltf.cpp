@@ -420,9 +420,9 @@ class builder {
       shape geometry = primitive_shape(m_, p, where);
       vertices_ += geometry.positions.size();
       if (vertices_ * bytes_per_vertex > budget_.bytes)  // checked as it grows: nodes may share a mesh many times
-        throw bad_element{where + ": the scene would take about " + std::to_string((vertices_ * bytes_per_vertex) >> 20) +
-                          " MiB by here (" + std::to_string(vertices_) + " vertices), over the budget of " +
-                          std::to_string(budget_.bytes >> 20) + " MiB (--budget MIB raises it)"};
+        throw bad_element{where + ": the scene would take about " + mib(vertices_ * bytes_per_vertex) + " MiB by here (" +
+                          std::to_string(vertices_) + " vertices), over the budget of " + mib(budget_.bytes) +
+                          " MiB (--budget MIB raises it)"};
       s_.objects.push_back({std::move(geometry), world, mat});
     }
   }

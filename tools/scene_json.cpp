@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -127,7 +128,6 @@ class reader {
 
 constexpr float big = 1e6f;
 
-std::string mib(std::size_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); }
 
 // The scene's estimated cost so far (scene_budget), checked before each thing is built.
 struct cost {
@@ -137,12 +137,14 @@ struct cost {
     vertices += v;
     particles += p;
     lights += l;
-    const std::size_t bytes = vertices * bytes_per_vertex + particles * bytes_per_particle + lights * bytes_per_light;
+    const std::size_t bytes = used();
     if (bytes > budget.bytes)
       throw bad_field{where + ": the scene would take about " + mib(bytes) + " MiB by here (" + std::to_string(vertices) +
                       " vertices, " + std::to_string(particles) + " particles, " + std::to_string(lights) +
                       " lights), over the budget of " + mib(budget.bytes) + " MiB (--budget MIB raises it)"};
   }
+  std::size_t used() const { return vertices * bytes_per_vertex + particles * bytes_per_particle + lights * bytes_per_light; }
+  std::size_t left() const { return budget.bytes - std::min(used(), budget.bytes); }
 };
 
 // The vertices detail::revolve makes of a profile of `points` points turned in `slices` slices.
@@ -158,6 +160,14 @@ material read_material(reader& r) {
   m.hair = r.boolean("hair", false);
   r.finish();
   return m;
+}
+
+// An object's "position", then its turn of "rotation_y" degrees about y, then "rotation_x" about x.
+glm::mat4 placement(reader& r) {
+  const glm::vec3 position = r.vec<3>("position", glm::vec3(0.0f), -big, big);
+  const float yaw = r.number("rotation_y", 0.0f, -360.0f, 360.0f), pitch = r.number("rotation_x", 0.0f, -360.0f, 360.0f);
+  return glm::rotate(glm::rotate(glm::translate(glm::mat4(1.0f), position), glm::radians(yaw), glm::vec3(0, 1, 0)),
+                     glm::radians(pitch), glm::vec3(1, 0, 0));
 }
 
 object read_object(reader& r, const std::map<std::string, std::uint32_t>& materials, cost& spent) {
@@ -200,12 +210,30 @@ object read_object(reader& r, const std::map<std::string, std::uint32_t>& materi
   } else {
     throw bad_field{r.field("shape") + ": unknown shape '" + kind + "' (box, room, pane, sphere, cylinder, bottle, hair)"};
   }
-  const glm::vec3 position = r.vec<3>("position", glm::vec3(0.0f), -big, big);
-  const float yaw = r.number("rotation_y", 0.0f, -360.0f, 360.0f), pitch = r.number("rotation_x", 0.0f, -360.0f, 360.0f);
-  o.transform = glm::rotate(glm::rotate(glm::translate(glm::mat4(1.0f), position), glm::radians(yaw), glm::vec3(0, 1, 0)),
-                            glm::radians(pitch), glm::vec3(1, 0, 0));
+  o.transform = placement(r);
   r.finish();
   return o;
+}
+
+// An object that is a glTF asset (scene_gltf.hpp), its path relative to the scene file's folder: its meshes
+// and materials, placed by the object's position and turns and scaled by its "scale"; its cameras and
+// lights are not the scene's.
+void add_asset(reader& r, const std::string& scene_file, scene& s, cost& spent) {
+  std::filesystem::path file(r.text("gltf"));
+  if (file.is_relative()) file = std::filesystem::path(scene_file).parent_path() / file;
+  const float scale = r.number("scale", 1.0f, 1e-6f, big);
+  const glm::mat4 place = glm::scale(placement(r), glm::vec3(scale));
+  r.finish();
+  auto asset = load_gltf(file.string(), scene_budget{spent.left(), spent.budget.file_bytes});
+  if (!asset) throw bad_field{r.field("gltf") + ": " + asset.error()};
+  const auto first = std::uint32_t(s.materials.size());
+  s.materials.insert(s.materials.end(), asset->materials.begin(), asset->materials.end());
+  for (object& o : asset->objects) {
+    spent.add(o.geometry.positions.size(), 0, 0, r.field("gltf"));
+    o.material += first;
+    o.transform = place * o.transform;
+    s.objects.push_back(std::move(o));
+  }
 }
 
 light read_light(reader& r) {
@@ -342,7 +370,8 @@ result<scene> parse_scene(const std::string& text, const std::string& name, cons
     if (!objs.is_array() || objs.empty()) throw bad_field{"objects: expected an array with at least one object"};
     for (std::size_t i = 0; i < objs.size(); ++i) {
       reader o(objs[i], "objects[" + std::to_string(i) + "]");
-      s.objects.push_back(read_object(o, materials, spent));
+      if (objs[i].contains("gltf")) add_asset(o, name, s, spent);
+      else s.objects.push_back(read_object(o, materials, spent));
     }
     if (top.has("lights")) {
       const json& lights = root["lights"];
@@ -387,6 +416,8 @@ result<std::string> read_input_file(const std::string& path, const char* what, s
   text << in.rdbuf();
   return text.str();
 }
+
+std::string mib(std::size_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); }
 
 result<scene> load_scene(const std::string& path, const scene_budget& budget) {
   if (is_gltf_path(path)) return load_gltf(path, budget);

@@ -10,13 +10,17 @@
 //                           "refractive": bool, "hair": bool}, ...},
 //    "objects": [{"shape": "box"|"room"|"pane"|"sphere"|"cylinder"|"bottle"|"hair", "material": "name",
 //                 "position": [x,y,z], "rotation_y": deg, "rotation_x": deg (after the turn about Y),
-//                 shape parameters...}, ...],
+//                 shape parameters...}
+//                or {"gltf": "file.gltf|.glb", "position", "rotation_y", "rotation_x", "scale": s}, ...],
 //    "lights": [{"type": "directional"|"point"|"spot", "colour": [r,g,b], "intensity": i,
 //                "position": [x,y,z], "direction": [x,y,z], "range": r, "inner_angle": deg,
 //                "outer_angle": deg, "shadows": bool}, ...],
 //    "particles": [{"material": "name", "base": [x,y,z], "radius": r, "height": h, "size": s,
 //                   "count": n, "seed": k}, ...],
 //    "post": [{"effect": "blur"|"bloom"|"dof"|"greyscale"|"sepia"|"aa", parameters...}, ...]}
+// An object of "gltf" places a glTF asset (scene_gltf.hpp; its path relative to the scene file's folder):
+// its meshes and materials, scaled by "scale" (1 unless given), then turned and moved as a shape is; the
+// asset's cameras and lights are not the scene's.
 // Shape parameters: box and room "size": [x,y,z]; pane "size": [w,h]; sphere "radius"; cylinder and
 // bottle "radius", "height"; sphere, cylinder and bottle "segments" (default 32); hair "radius" (of the
 // scalp), "strands", "length", "width" (default 0.01), "segments" (default 8), "seed" (default 1).
@@ -49,6 +53,8 @@ struct scene_budget {
   std::size_t file_bytes = std::size_t(64) << 20;
 };
 inline constexpr std::size_t bytes_per_vertex = 256, bytes_per_particle = 1024, bytes_per_light = 1024;
+// `bytes` in MiB, rounded up, as a budget's messages give them.
+std::string mib(std::size_t bytes);
 // The estimate for a built scene (its vertices, particles and lights).
 std::size_t scene_bytes(const scene& s);
 
