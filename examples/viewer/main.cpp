@@ -23,9 +23,11 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 #include <GLFW/glfw3.h>
-#include <stb/stb_image_write.h>
 
 #include "../example_io.hpp"
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION  // stb_image_write.h's definitions, here once
+#include <stb/stb_image_write.h>
 
 #include <dstrans_gl_frame.hpp>
 #include <scene_json.hpp>
