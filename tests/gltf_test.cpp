@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include <scene_json.hpp>
 
 #include "gltf_writer.hpp"
+#include "json_mutations.hpp"
 
 using namespace dstrans;
 using json = nlohmann::json;
@@ -40,6 +42,15 @@ result<scene> load(gltf_doc& d, const std::string& name) {
 }
 
 }  // namespace
+
+TEST_CASE("a shape placed past the float range is told", "[scene][gltf]") {
+  const shape tri{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}}, {0, 1, 2}};
+  CHECK(finite_in_world(tri, glm::mat4(1.0f)));
+  CHECK(finite_in_world(tri, glm::scale(glm::mat4(1.0f), glm::vec3(1e12f))));
+  CHECK_FALSE(finite_in_world(tri, glm::translate(glm::scale(glm::mat4(1.0f), glm::vec3(1e12f)), glm::vec3(1e30f))));
+  CHECK_FALSE(finite_in_world(tri, glm::scale(glm::mat4(1.0f), glm::vec3(1e30f))));  // the normals' inverse overflows
+  CHECK_FALSE(finite_in_world(tri, glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 1.0f, 0.0f))));  // flattened: no normal
+}
 
 TEST_CASE("glTF files are told by their extension", "[scene][gltf]") {
   CHECK(is_gltf_path("a/b.gltf"));
@@ -93,13 +104,13 @@ TEST_CASE("assimp's broken glTF test models get an error naming the file and the
            broken{"IncorrectVertexArrays/Cube.gltf", ": meshes[1].primitives[0]: 35 vertices do not make whole triangles"},
            broken{"MissingBin/BoxTextured.gltf", "BoxTextured0.bin"},
            broken{"RecursiveNodes/RecursiveNodes.gltf", ": nodes[0]: the node is its own ancestor"},
-           broken{"SchemaFailures/sceneWrongType.gltf", ": scene: \"hello\" is not an integer from 0"},
+           broken{"SchemaFailures/sceneWrongType.gltf", ": scene: the string \"hello\" is not an integer from 0"},
            broken{"TestNoRootNode/NoScene.gltf", ": scene: 0 is not one of the 0 there are"},
            broken{"TestNoRootNode/SceneWithoutNodes.gltf", ": no triangles to draw in its scene"},
            broken{"draco/2CylinderEngine.gltf", ": extensionsRequired: KHR_draco_mesh_compression is not an extension dstrans reads"},
            broken{"wrongTypes/badArray.gltf", ": meshes[0].primitives: an array is needed"},
            broken{"wrongTypes/badExtension.gltf", ": materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform: an object is needed"},
-           broken{"wrongTypes/badNumber.gltf", ": materials[0].normalTexture.scale: \"not a number\" is not a number"},
+           broken{"wrongTypes/badNumber.gltf", ": materials[0].normalTexture.scale: the string \"not a number\" is not a number"},
            broken{"wrongTypes/badObject.gltf", ": materials[0].pbrMetallicRoughness: an object is needed"},
            broken{"wrongTypes/badString.gltf", ": scenes[0].name: a string is needed"},
            broken{"wrongTypes/badUint.gltf", ".baseColorTexture.index: -1 is not an integer from 0"},
@@ -165,6 +176,11 @@ TEST_CASE("glTF geometry: node transforms, strips and fans, flat and repaired no
   CHECK(s->objects[4].geometry.positions[1] == glm::vec3(1, 0, 0));
   CHECK(s->objects[5].geometry.positions[1] == glm::vec3(1, 0, 0));
   CHECK(s->objects[5].geometry.positions[2] == glm::vec3(0, 1, 0));
+  // A node scaled to 0 is hidden, as glTF hides one: nothing of it is drawn.
+  d.mesh({{"attributes", {{"POSITION", p}}}}, {{"scale", {0, 1, 1}}});
+  auto hidden = load(d, "hidden");
+  REQUIRE(hidden);
+  CHECK(hidden->objects.size() == 6);
 }
 
 TEST_CASE("glTF materials: alpha modes, transmission as glass, ior, Beer's law, roughness and metallic", "[scene][gltf]") {
@@ -300,6 +316,32 @@ TEST_CASE("bad glTF elements get an error naming them, never a crash", "[scene][
             "nodes[0]: the node is its own ancestor"},
            {[&](gltf_doc& d) {
               tri(d);
+              d.j["nodes"][0]["scale"] = {1e39, 1, 1};
+            },
+            "nodes[0].scale[0]: not a finite float"},
+           {[&](gltf_doc& d) {  // each scale a float, their product past the range
+              tri(d);
+              d.j["nodes"][0]["scale"] = {1e30, 1, 1};
+              d.j["nodes"].push_back({{"scale", {1e30, 1, 1}}, {"children", {0}}});
+              d.j["scenes"][0]["nodes"] = {1};
+            },
+            "nodes[0]: its transform is past the float range"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["nodes"][0]["translation"] = {3e38, 0, 0};
+              d.j["nodes"].push_back({{"translation", {3e38, 0, 0}}, {"children", {0}}});
+              d.j["scenes"][0]["nodes"] = {1};
+            },
+            "nodes[0]: its transform takes meshes[0].primitives[0] past the float range"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 1}, {"znear", 0.1}}}}};
+              d.root({{"translation", {3e38, 0, 0}}, {"children", {2}}});
+              d.j["nodes"].push_back({{"camera", 0}, {"translation", {3e38, 0, 0}}});
+            },
+            "nodes[2].camera: its node's transform is past the float range"},
+           {[&](gltf_doc& d) {
+              tri(d);
               d.j["extensionsRequired"] = {"KHR_texture_basisu"};
             },
             "extensionsRequired: KHR_texture_basisu is not an extension dstrans reads"},
@@ -327,7 +369,7 @@ TEST_CASE("bad glTF elements get an error naming them, never a crash", "[scene][
             },
             "cameras[0].perspective: 0 < yfov < pi and 0 < znear < zfar (or zfar absent) are needed"},
            {[&](gltf_doc& d) { d.j["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", "zero"}}}}}}}}; },
-            "meshes[0].primitives[0].attributes.POSITION: \"zero\" is not an integer from 0"},
+            "meshes[0].primitives[0].attributes.POSITION: the string \"zero\" is not an integer from 0"},
        }) {
     gltf_doc d;
     b.edit(d);
@@ -376,7 +418,7 @@ TEST_CASE("the glTF schema's types: what tinygltf would read as absent is an err
   CHECK(gltf_json_error(R"({"nodes": [{"mesh": 1.5}]})", {}) == std::string("nodes[0].mesh: 1.5 is not an integer from 0"));
   CHECK_FALSE(gltf_json_error(R"({"nodes": [{"mesh": 1.0}]})", {}));  // JSON Schema's integer
   CHECK(gltf_json_error(R"({"extensions": {"KHR_lights_punctual": {"lights": [{"intensity": "bright"}]}}})", {}) ==
-        std::string("extensions.KHR_lights_punctual.lights[0].intensity: \"bright\" is not a number"));
+        std::string("extensions.KHR_lights_punctual.lights[0].intensity: the string \"bright\" is not a number"));
   CHECK(gltf_json_error(R"({"extensionsRequired": ["KHR_materials_ior"]})", {"KHR_materials_ior"}) == std::nullopt);
   CHECK(gltf_json_error(R"({"extensionsRequired": ["EXT_x"]})", {}) == std::string("extensionsRequired: EXT_x is not an extension dstrans reads"));
   CHECK(gltf_json_error("[1, 2]", {}) == std::string("the file: an object is needed"));
@@ -462,10 +504,70 @@ TEST_CASE("a scene file places glTF assets among its shapes", "[scene][gltf]") {
   auto unknown = parse_scene(scene_with(R"({"gltf": ")" + file + R"(", "material": "wall"})"), folder + "/scene.json");
   REQUIRE_FALSE(unknown);
   CHECK_THAT(unknown.error(), Catch::Contains("objects[1]"));
+  auto far = parse_scene(scene_with(R"({"gltf": ")" + file + R"(", "scale": 1e6, "position": [1e6, 0, 0]})"), folder + "/scene.json");
+  REQUIRE(far);  // large, and still within the float range
+  gltf_doc huge;
+  huge.mesh({{"attributes", {{"POSITION", huge.positions({0, 0, 0, 3e33f, 0, 0, 0, 1, 0})}}}});
+  const std::string huge_path = huge.write("huge");
+  auto past = parse_scene(scene_with(R"({"gltf": ")" + std::filesystem::path(huge_path).filename().string() + R"(", "scale": 1e6})"),
+                          folder + "/scene.json");
+  std::filesystem::remove(huge_path);
+  REQUIRE_FALSE(past);
+  CHECK_THAT(past.error(), Catch::EndsWith("objects[1].scale: places the asset past the float range"));
   scene_budget tight;
   tight.bytes = 26 * bytes_per_vertex;  // the box's 24 vertices fit, the triangle's 3 more do not
   auto over = parse_scene(scene_with(R"({"gltf": ")" + file + R"("})"), folder + "/scene.json", tight);
   std::filesystem::remove(path);
   REQUIRE_FALSE(over);
   CHECK_THAT(over.error(), Catch::Contains("objects[1].gltf") && Catch::Contains("over the budget"));
+}
+
+// As scene_fuzz_test.cpp for scene files: glass_shelf.gltf and assimp's embedded box mutated as JSON, and
+// the binary box with bytes changed or cut, each loaded from a file. Every case is a scene with finite
+// positions and unit normals or a short error naming the file, never a crash (the sanitizer build runs it).
+TEST_CASE("900 mutated glTF files each load or give a short error", "[scene][gltf][fuzz]") {
+  auto read = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string shelf = read(std::string(DSTRANS_SOURCE_DIR) + "/examples/scenes/glass_shelf.gltf"),
+                    box = read(models + "/BoxTextured-glTF-Embedded/BoxTextured.gltf"),
+                    glb = read(models + "/BoxTextured-glTF-Binary/BoxTextured.glb");
+  REQUIRE(glb_json(glb));
+  const std::string base = (std::filesystem::temp_directory_path() / ("dstrans_" + std::to_string(getpid()) + "_fuzz")).string();
+  std::mt19937 rng(20261203u);
+  scene_budget budget;
+  budget.bytes = std::size_t(256) << 20;
+  std::size_t loaded = 0, refused = 0;
+  for (int i = 0; i < 900; ++i) {
+    std::string data, path = base + ".gltf";
+    if (i % 3 == 2) {
+      data = glb;
+      path = base + ".glb";
+      if (rng() % 4 == 0) data.resize(rng() % (data.size() + 1));
+      else
+        for (int k = 0; k < 1 + int(rng() % 8); ++k) data[rng() % data.size()] = char(rng() % 256);
+    } else {
+      data = mutate(i % 3 ? box : shelf, rng);
+    }
+    std::ofstream(path, std::ios::binary) << data;
+    const auto s = load_gltf(path, budget);
+    INFO("case " << i);
+    if (s) {
+      ++loaded;
+      const scene_mesh m = flatten(*s);
+      for (const glm::vec3& p : m.positions) CHECK(std::isfinite(p.x + p.y + p.z));
+      for (const glm::vec3& n : m.normals) CHECK(glm::length(n) == Approx(1.0f).margin(1e-3));
+      for (std::uint32_t k : m.indices) CHECK(k < m.positions.size());
+    } else {
+      ++refused;
+      INFO(s.error().substr(0, 200));
+      CHECK(s.error().rfind(path + ": ", 0) == 0);
+      CHECK(s.error().size() < 500);
+    }
+  }
+  std::filesystem::remove(base + ".gltf");
+  std::filesystem::remove(base + ".glb");
+  CHECK(loaded > 50);
+  CHECK(refused > 300);
 }

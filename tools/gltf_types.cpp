@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_input.hpp"
+
 namespace dstrans {
 
 namespace {
@@ -95,7 +97,7 @@ void check_object(const json& v, const std::string& name, const std::string& whe
   const json& extensions = v.at("extensions");
   if (!extensions.is_object()) throw wrong_type{where + ".extensions: an object is needed"};
   for (const auto& [extension, value] : extensions.items()) {
-    const std::string at = where + ".extensions." + extension;
+    const std::string at = where + ".extensions." + key_excerpt(extension);
     if (schemas().count(name + "." + extension)) check_object(value, name + "." + extension, at);
     else if (!value.is_object()) throw wrong_type{at + ": an object is needed"};
   }
@@ -109,16 +111,16 @@ void check(const json& v, const std::string& type, const std::string& where) {
     return;
   }
   if (type == "uint") {
-    if (!is_uint(v)) throw wrong_type{where + ": " + v.dump() + " is not an integer from 0"};
+    if (!is_uint(v)) throw wrong_type{where + ": " + excerpt(v) + " is not an integer from 0"};
   } else if (type == "number") {
-    if (!v.is_number()) throw wrong_type{where + ": " + v.dump() + " is not a number"};
+    if (!v.is_number()) throw wrong_type{where + ": " + excerpt(v) + " is not a number"};
   } else if (type == "string") {
     if (!v.is_string()) throw wrong_type{where + ": a string is needed"};
   } else if (type == "bool") {
     if (!v.is_boolean()) throw wrong_type{where + ": true or false is needed"};
   } else if (type == "{uint}") {
     if (!v.is_object()) throw wrong_type{where + ": an object is needed"};
-    for (const auto& [key, value] : v.items()) check(value, "uint", where + "." + key);
+    for (const auto& [key, value] : v.items()) check(value, "uint", where + "." + key_excerpt(key));
   } else {
     check_object(v, type, where);
   }
@@ -127,8 +129,14 @@ void check(const json& v, const std::string& type, const std::string& where) {
 }  // namespace
 
 std::optional<std::string> gltf_json_error(const std::string& text, const std::set<std::string>& readable) {
-  const json root = json::parse(text, nullptr, false);
-  if (root.is_discarded()) return std::nullopt;
+  json root;
+  try {
+    root = parse_bounded<json>(text, text.size());  // depth bounded: tinygltf's parser recurses once a level
+  } catch (const json_too_big& e) {
+    return "its JSON is " + e.message;
+  } catch (const json::exception&) {
+    return std::nullopt;  // tinygltf's parser says where
+  }
   try {
     check_object(root, "glTF", "the file");
   } catch (const wrong_type& e) {
@@ -139,7 +147,7 @@ std::optional<std::string> gltf_json_error(const std::string& text, const std::s
   if (root.contains("extensionsRequired"))
     for (const json& e : root.at("extensionsRequired"))
       if (!readable.count(e.get<std::string>()))
-        return "extensionsRequired: " + e.get<std::string>() + " is not an extension dstrans reads";
+        return "extensionsRequired: " + key_excerpt(e.get<std::string>()) + " is not an extension dstrans reads";
   return std::nullopt;
 }
 

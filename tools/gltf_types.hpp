@@ -17,8 +17,9 @@
 namespace dstrans {
 
 // The first property of glTF JSON `text` whose type the schema does not allow, or the first extension in
-// its extensionsRequired that is not in `readable`, as a sentence naming it; nothing where all is well
-// (or where the text is not JSON: the parser says so).
+// its extensionsRequired that is not in `readable`, as a sentence naming it; the same where the JSON nests
+// deeper than a scene file may (json_input.hpp: tinygltf's parser would recurse once a level); nothing
+// where all is well, or where the text is not JSON (tinygltf's parser says where).
 std::optional<std::string> gltf_json_error(const std::string& text, const std::set<std::string>& readable);
 
 // The JSON chunk of binary glTF `glb` (its first chunk), or nothing where the header is not one.

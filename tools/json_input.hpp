@@ -2,6 +2,7 @@
 // a short excerpt (never dump(), which recurses once a level and copies the whole value).
 //
 //   auto j = dstrans::parse_bounded<nlohmann::json>(text);   // throws json::exception or json_too_big
+//   (a second argument raises the count of values: a glTF file's JSON may hold many more than a scene's)
 //   throw bad_field{"camera.fov_y: expected a number, got " + dstrans::excerpt(j["camera"]["fov_y"])};
 #pragma once
 
@@ -23,11 +24,11 @@ struct json_too_big {
 };
 
 template <class Json>
-Json parse_bounded(const std::string& text) {
+Json parse_bounded(const std::string& text, std::size_t max_values = max_json_values) {
   std::size_t values = 0;
-  return Json::parse(text, [&values](int depth, typename Json::parse_event_t, Json&) {
+  return Json::parse(text, [&values, max_values](int depth, typename Json::parse_event_t, Json&) {
     if (depth > max_json_depth) throw json_too_big{"nested more than " + std::to_string(max_json_depth) + " levels deep"};
-    if (++values > max_json_values) throw json_too_big{"more than " + std::to_string(max_json_values) + " values long"};
+    if (++values > max_values) throw json_too_big{"more than " + std::to_string(max_values) + " values long"};
     return true;
   });
 }
@@ -37,6 +38,9 @@ inline std::string parse_message(const std::exception& e) {
   const std::string m = e.what();
   return m.size() > 200 ? m.substr(0, 200) + "..." : m;
 }
+
+// A key or name from the text as an error quotes it: its first characters.
+inline std::string key_excerpt(const std::string& key) { return key.size() > 40 ? key.substr(0, 40) + "..." : key; }
 
 // The value's type and, for a scalar, its first characters: "an array of 3 values", "the string
 // \"abc...\"", "1e+40".

@@ -20,6 +20,7 @@
 #include <tiny_gltf.h>
 
 #include "gltf_types.hpp"
+#include "json_input.hpp"
 
 namespace dstrans {
 
@@ -156,7 +157,7 @@ std::pair<material, bool> from_gltf(const tinygltf::Material& g, const std::stri
   bool drawn = true;
   if (g.alphaMode == "BLEND") out.alpha = base.a;
   else if (g.alphaMode == "MASK") drawn = double(base.a) >= g.alphaCutoff;
-  else if (g.alphaMode != "OPAQUE") throw bad_element{where + ".alphaMode: \"" + g.alphaMode + "\" is not OPAQUE, MASK or BLEND"};
+  else if (g.alphaMode != "OPAQUE") throw bad_element{where + ".alphaMode: \"" + key_excerpt(g.alphaMode) + "\" is not OPAQUE, MASK or BLEND"};
   if (const tinygltf::Value* t = extension(g.extensions, "KHR_materials_transmission")) {
     const std::string in = where + ".extensions.KHR_materials_transmission";
     const auto transmission = float(std::clamp(ext_number(*t, "transmissionFactor", 0.0, in), 0.0, 1.0));
@@ -192,7 +193,8 @@ glm::mat4 local_transform(const tinygltf::Node& n, const std::string& where) {
   auto numbers = [&](const std::vector<double>& v, std::size_t size, const char* key) {
     if (!v.empty() && v.size() != size) throw bad_element{where + "." + key + ": " + std::to_string(size) + " numbers are needed"};
     for (std::size_t i = 0; i < v.size(); ++i)
-      if (!std::isfinite(v[i])) throw bad_element{where + "." + key + "[" + std::to_string(i) + "]: not finite"};
+      if (!(std::fabs(v[i]) <= double(std::numeric_limits<float>::max())))
+        throw bad_element{where + "." + key + "[" + std::to_string(i) + "]: not a finite float"};
     return !v.empty();
   };
   glm::mat4 m(1.0f);
@@ -309,7 +311,7 @@ light from_gltf(const tinygltf::Light& g, const glm::mat4& world, const std::str
   if (g.type == "directional") l.kind = light_kind::directional;
   else if (g.type == "point") l.kind = light_kind::point;
   else if (g.type == "spot") l.kind = light_kind::spot;
-  else throw bad_element{where + ".type: \"" + g.type + "\" is not directional, point or spot"};
+  else throw bad_element{where + ".type: \"" + key_excerpt(g.type) + "\" is not directional, point or spot"};
   if (!g.color.empty()) {
     if (g.color.size() != 3) throw bad_element{where + ".color: 3 numbers are needed"};
     for (int c = 0; c < 3; ++c) {
@@ -321,6 +323,8 @@ light from_gltf(const tinygltf::Light& g, const glm::mat4& world, const std::str
   if (!std::isfinite(g.range) || g.range < 0.0) throw bad_element{where + ".range: not a finite number at least 0"};
   l.position = glm::vec3(world[3]);
   const glm::vec3 forward = -glm::vec3(world[2]);
+  if (!std::isfinite(l.position.x + l.position.y + l.position.z) || !std::isfinite(glm::length(forward)))
+    throw bad_element{where + ": its node's transform is past the float range"};
   if (!(glm::length(forward) > 0.0f)) throw bad_element{where + ": its node's transform has no direction (-Z is 0)"};
   l.direction = glm::normalize(forward);
   l.shadows = true;
@@ -388,7 +392,7 @@ class builder {
     if (std::find(path_.begin(), path_.end(), index) != path_.end()) throw bad_element{where + ": the node is its own ancestor"};
     path_.push_back(index);
     const glm::mat4 world = parent * local_transform(n, where);
-    if (n.mesh >= 0) add_mesh(n.mesh, world, where + ".mesh");
+    if (n.mesh >= 0) add_mesh(n.mesh, world, where);
     if (n.camera >= 0) add_camera(n.camera, world, where + ".camera");
     if (const tinygltf::Value* l = extension(n.extensions, "KHR_lights_punctual")) {
       const std::string in = where + ".extensions.KHR_lights_punctual.light";
@@ -400,8 +404,13 @@ class builder {
     path_.pop_back();
   }
 
-  void add_mesh(int index, const glm::mat4& world, const std::string& from) {
-    const tinygltf::Mesh& mesh = item(m_.meshes, index, from);
+  // The primitives of mesh `index`, held by node `node` at `world`. A transform that flattens its mesh
+  // (scale 0, as glTF hides a node) draws nothing; one that takes it past the float range is an error.
+  void add_mesh(int index, const glm::mat4& world, const std::string& node) {
+    const tinygltf::Mesh& mesh = item(m_.meshes, index, node + ".mesh");
+    const float det = glm::determinant(glm::mat3(world));
+    if (!std::isfinite(det)) throw bad_element{node + ": its transform is past the float range"};
+    if (det == 0.0f) return;
     for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
       const tinygltf::Primitive& p = mesh.primitives[i];
       const std::string where = at("meshes", std::size_t(index)) + "." + at("primitives", i);
@@ -418,6 +427,7 @@ class builder {
         mat = *default_material_;
       }
       shape geometry = primitive_shape(m_, p, where);
+      if (!finite_in_world(geometry, world)) throw bad_element{node + ": its transform takes " + where + " past the float range"};
       vertices_ += geometry.positions.size();
       if (vertices_ * bytes_per_vertex > budget_.bytes)  // checked as it grows: nodes may share a mesh many times
         throw bad_element{where + ": the scene would take about " + mib(vertices_ * bytes_per_vertex) + " MiB by here (" +
@@ -437,6 +447,8 @@ class builder {
       throw bad_element{where + ": 0 < yfov < pi and 0 < znear < zfar (or zfar absent) are needed"};
     s_.view.position = glm::vec3(world[3]);
     const glm::vec3 forward = -glm::vec3(world[2]);
+    if (!std::isfinite(s_.view.position.x + s_.view.position.y + s_.view.position.z) || !std::isfinite(glm::length(forward)))
+      throw bad_element{from + ": its node's transform is past the float range"};
     if (!(glm::length(forward) > 0.0f)) throw bad_element{from + ": its node's transform has no direction (-Z is 0)"};
     s_.view.target = s_.view.position + glm::normalize(forward);
     s_.view.fov_y = float(glm::degrees(p.yfov));
@@ -492,6 +504,16 @@ std::string as_written(const std::string& path, void*) { return path; }
 
 }  // namespace
 
+bool finite_in_world(const shape& s, const glm::mat4& transform) {
+  const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(transform)));
+  for (std::size_t v = 0; v < s.positions.size(); ++v) {
+    const glm::vec3 w = glm::vec3(transform * glm::vec4(s.positions[v], 1.0f));
+    const float n = glm::length(normal_matrix * s.normals[v]);
+    if (!std::isfinite(w.x + w.y + w.z) || !std::isfinite(n) || !(n > 0.0f)) return false;
+  }
+  return true;
+}
+
 bool is_gltf_path(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -516,6 +538,7 @@ result<scene> load_gltf(const std::string& path, const scene_budget& budget) {
                          : loader.LoadASCIIFromString(&model, &error, &warning, bytes->data(), unsigned(bytes->size()), base);
   if (!ok) {
     while (!error.empty() && std::isspace(static_cast<unsigned char>(error.back()))) error.pop_back();
+    if (error.size() > 300) error = error.substr(0, 300) + "...";  // it may quote a long URI or token
     return failure{path + ": " + (error.empty() ? std::string("not a glTF 2.0 file") : error)};
   }
   try {

@@ -42,6 +42,10 @@
 
 namespace dstrans {
 
+// Whether flatten() places every vertex of `s` at `transform` at a finite position with a finite,
+// non-zero normal (a transform built from a file's numbers may overflow, or flatten a mesh).
+bool finite_in_world(const shape& s, const glm::mat4& transform);
+
 // Whether `path` names a glTF file by its extension (.gltf or .glb, any case).
 bool is_gltf_path(const std::string& path);
 

@@ -232,6 +232,7 @@ void add_asset(reader& r, const std::string& scene_file, scene& s, cost& spent) 
     spent.add(o.geometry.positions.size(), 0, 0, r.field("gltf"));
     o.material += first;
     o.transform = place * o.transform;
+    if (!finite_in_world(o.geometry, o.transform)) throw bad_field{r.field("scale") + ": places the asset past the float range"};
     s.objects.push_back(std::move(o));
   }
 }
