@@ -18,13 +18,15 @@ MAKEFLAGS += --no-print-directory
 # packages) for shaders, Catch2 for the tests; ccache keeps rebuilds cheap.
 # GL through EGL and Vulkan on Mesa (llvmpipe, lavapipe) with the Khronos validation layer, and
 # nlohmann-json for the command line, stb for PNG files, matplotlib for the benchmark's plot, GLFW and
-# Xvfb for the viewer and its test, tinygltf for glTF scenes and assimp's glTF test models for their
-# tests. `make test` fails when CMake finds a package this list does not install.
+# Xvfb for the viewer and its test, tinygltf for glTF scenes. `make test` fails when CMake finds a package
+# these lists do not install.
 PACKAGES := g++ make cmake ccache libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross \
             libspirv-cross-c-shared-dev catch2 \
             libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri mesa-vulkan-drivers libvulkan-dev \
             vulkan-validationlayers nlohmann-json3-dev libstb-dev python3-matplotlib libglfw3-dev xvfb xauth \
-            libtinygltf-dev assimp-testmodels
+            libtinygltf-dev
+# For the tests alone (74 MB that `make demo` does not need): assimp's valid and broken glTF models.
+TEST_PACKAGES := assimp-testmodels
 
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
@@ -38,14 +40,20 @@ SANITIZE_ENV := ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 configure_in = @mkdir -p $(1) && cmake -S . -B $(1) $(2) $(CMAKE_FLAGS) > $(1)/configure.log 2>&1 \
                || { cat $(1)/configure.log; echo "make: configuring $(1) failed (log: $(1)/configure.log)"; exit 1; }
 
-.PHONY: demo test sanitize deps configure build print-packages clean
+.PHONY: demo test sanitize deps test-deps configure build print-packages clean
 
-deps:
-	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+# install_missing: installs those of the packages $(1) that are not installed.
+install_missing = @missing=$$(for p in $(1); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
 	  echo "Installing Debian packages:" $$missing; \
 	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
 	fi
+
+deps:
+	$(call install_missing,$(PACKAGES))
+
+test-deps:
+	$(call install_missing,$(PACKAGES) $(TEST_PACKAGES))
 
 configure: deps
 	@echo "Configuring $(BUILD)/ (cmake)"
@@ -54,11 +62,11 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-test: build
+test: test-deps build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 	$(MAKE) --no-print-directory sanitize
 
-sanitize: deps
+sanitize: test-deps
 	@echo "Configuring $(SANITIZE_BUILD)/ (cmake, sanitizers)"
 	$(call configure_in,$(SANITIZE_BUILD),-DCMAKE_BUILD_TYPE=Debug -DDSTRANS_SANITIZE=ON)
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
@@ -67,7 +75,7 @@ sanitize: deps
 # The list, for the test that every package CMake found is one of these or a dependency of one
 # (tests/check_packages.sh).
 print-packages:
-	@echo $(PACKAGES)
+	@echo $(PACKAGES) $(TEST_PACKAGES)
 
 demo: configure
 	@echo "Building the dstrans command ($(BUILD)/tools/dstrans)"

@@ -60,6 +60,8 @@ TEST_CASE("glTF files are told by their extension", "[scene][gltf]") {
 }
 
 TEST_CASE("assimp's glTF test models: the box loads the same from .gltf, .glb and embedded", "[scene][gltf]") {
+  INFO("assimp's glTF models in " << models << " (Debian's assimp-testmodels; make test installs it)");
+  REQUIRE(std::filesystem::is_directory(models));
   std::vector<scene> boxes;
   for (const char* file : {"BoxTextured-glTF/BoxTextured.gltf", "BoxTextured-glTF-Binary/BoxTextured.glb",
                            "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
