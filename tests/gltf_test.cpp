@@ -295,7 +295,27 @@ TEST_CASE("bad glTF elements get an error naming them, never a crash", "[scene][
               tri(d);
               d.j["accessors"][0]["count"] = 1000;
             },
-            "accessors[0]: 1000 elements need 12000 bytes of bufferViews[0], which has 36"},
+            "accessors[0]: 1000 elements from byte 0 do not fit the 36 bytes of bufferViews[0]"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["accessors"][0]["byteOffset"] = 18446744073709551600ull;  // would wrap a sum of offsets
+            },
+            "accessors[0]: 3 elements from byte 18446744073709551600 do not fit the 36 bytes of bufferViews[0]"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["bufferViews"][0]["byteStride"] = 1000000;  // tinygltf refuses it first, we would too
+            },
+            "byteStride"},
+           {[&](gltf_doc& d) {
+              tri(d);
+              d.j["bufferViews"][0]["byteStride"] = 8;
+            },
+            "bufferViews[0].byteStride: 8 is not from 12 to 252"},
+           {[&](gltf_doc& d) {  // no buffer view: zeros, as many as it names
+              d.j["accessors"] = {{{"componentType", 5126}, {"count", 4000000000ull}, {"type", "VEC3"}}};
+              d.mesh({{"attributes", {{"POSITION", 0}}}});
+            },
+            "accessors[0].count: 4000000000 elements are more than the budget holds"},
            {[&](gltf_doc& d) {
               tri(d);
               d.j["bufferViews"][0]["byteLength"] = 1 << 20;

@@ -68,25 +68,30 @@ const unsigned char* view_bytes(const tinygltf::Model& m, int view, std::size_t 
   if (v.byteOffset > b.data.size() || v.byteLength > b.data.size() - v.byteOffset)
     throw bad_element{in + ": bytes " + std::to_string(v.byteOffset) + " to " + std::to_string(v.byteOffset + v.byteLength) +
                       " are past the " + std::to_string(b.data.size()) + " of buffers[" + std::to_string(v.buffer) + "]"};
-  // In 64 bits: a count near 2^32 cannot wrap, since each operand is below 2^32 times a stride below 2^8.
-  const std::uint64_t end = count == 0 ? 0 : std::uint64_t(offset) + std::uint64_t(stride) * (count - 1) + size;
-  if (end > v.byteLength)
-    throw bad_element{where + ": " + std::to_string(count) + " elements need " + std::to_string(end) + " bytes of " + in +
-                      ", which has " + std::to_string(v.byteLength)};
+  if (stride > 252 || (v.byteStride != 0 && stride < size))
+    throw bad_element{in + ".byteStride: " + std::to_string(stride) + " is not from " + std::to_string(size) + " to 252"};
+  // In 64 bits, no product wraps: count is below 2^32 (read_accessor's bound) and stride below 2^8.
+  const std::uint64_t end = count == 0 ? 0 : std::uint64_t(stride) * (count - 1) + size;
+  if (offset > v.byteLength || end > v.byteLength - offset)
+    throw bad_element{where + ": " + std::to_string(count) + " elements from byte " + std::to_string(offset) + " do not fit the " +
+                      std::to_string(v.byteLength) + " bytes of " + in};
   return b.data.data() + v.byteOffset;
 }
 
 // Accessor `index` as `count` x `width` numbers, row by row, sparse substitutions applied; its type must
-// have `width` components and one of `types` as its component type.
+// have `width` components and one of `types` as its component type, and it may have at most `most`
+// elements (the budget's: an accessor without a buffer view is zeros of any count the file names).
 std::vector<double> read_accessor(const tinygltf::Model& m, int index, int width, std::initializer_list<int> types,
-                                  const std::string& where) {
+                                  std::size_t most, const std::string& where) {
   const tinygltf::Accessor& a = item(m.accessors, index, where);
   const std::string in = "accessors[" + std::to_string(index) + "]";
   if (tinygltf::GetNumComponentsInType(std::uint32_t(a.type)) != width)
     throw bad_element{in + ".type: " + std::to_string(width) + " components a vertex are needed for " + where};
   if (std::find(types.begin(), types.end(), a.componentType) == types.end())
     throw bad_element{in + ".componentType: " + std::to_string(a.componentType) + " is not a type " + where + " may have"};
-  if (a.count > (std::size_t(1) << 28)) throw bad_element{in + ".count: " + std::to_string(a.count) + " is more than dstrans reads"};
+  if (a.count > most || (a.sparse.isSparse && std::size_t(std::max(a.sparse.count, 0)) > most))  // count is unset unless sparse
+    throw bad_element{in + ".count: " + std::to_string(a.count) + " elements are more than the budget holds (" + std::to_string(most) +
+                      "; --budget MIB raises it)"};
   const std::size_t size = std::size_t(tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType)));
   std::vector<double> out(a.count * std::size_t(width), 0.0);
   auto fill = [&](const unsigned char* p, std::size_t row) {
@@ -230,7 +235,7 @@ std::vector<std::uint32_t> triangles(const std::vector<std::uint32_t>& refs, int
 }
 
 // A primitive's geometry as a dstrans shape (scene_gltf.hpp: normals flat where absent, repaired where bad).
-shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, const std::string& where) {
+shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, std::size_t most, const std::string& where) {
   auto position = p.attributes.find("POSITION");
   if (position == p.attributes.end()) throw bad_element{where + ".attributes.POSITION: absent"};
   const std::string pos_at = where + ".attributes.POSITION";
@@ -238,7 +243,7 @@ shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, co
       read_accessor(m, position->second, 3,
                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                      TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                    pos_at);
+                    most, pos_at);
   const std::size_t vertices = xyz.size() / 3;
   for (std::size_t i = 0; i < xyz.size(); ++i)
     if (!std::isfinite(xyz[i]) || std::fabs(xyz[i]) > double(std::numeric_limits<float>::max()))
@@ -249,7 +254,7 @@ shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, co
     for (double v : read_accessor(m, p.indices, 1,
                                   {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-                                  idx_at)) {
+                                  most, idx_at)) {
       if (v >= double(vertices))
         throw bad_element{idx_at + "[" + std::to_string(refs.size()) + "]: " + std::to_string(std::uint64_t(v)) + " is past the " +
                           std::to_string(vertices) + " vertices of attributes.POSITION"};
@@ -277,7 +282,7 @@ shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, co
       }
     return s;
   }
-  const std::vector<double> n = read_accessor(m, normal->second, 3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, where + ".attributes.NORMAL");
+  const std::vector<double> n = read_accessor(m, normal->second, 3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, most, where + ".attributes.NORMAL");
   if (n.size() != xyz.size())
     throw bad_element{where + ".attributes.NORMAL: " + std::to_string(n.size() / 3) + " normals for " + std::to_string(vertices) + " positions"};
   std::vector<bool> repaired(vertices, false);
@@ -426,7 +431,8 @@ class builder {
         }
         mat = *default_material_;
       }
-      shape geometry = primitive_shape(m_, p, where);
+      // Each element read costs its numbers as doubles and then its vertex: the budget bounds them all.
+      shape geometry = primitive_shape(m_, p, budget_.bytes / 32, where);
       if (!finite_in_world(geometry, world)) throw bad_element{node + ": its transform takes " + where + " past the float range"};
       vertices_ += geometry.positions.size();
       if (vertices_ * bytes_per_vertex > budget_.bytes)  // checked as it grows: nodes may share a mesh many times
