@@ -7,6 +7,7 @@
 
 #include <dstrans/particles.hpp>
 #include <dstrans/scene.hpp>
+#include <json_input.hpp>
 #include <scene_json.hpp>
 
 using namespace dstrans;
@@ -321,4 +322,17 @@ TEST_CASE("budget messages give MiB rounded up", "[scene]") {
   CHECK(mib(1) == "1");
   CHECK(mib(std::size_t(1) << 20) == "1");
   CHECK(mib((std::size_t(1) << 20) + 1) == "2");
+}
+
+TEST_CASE("user JSON is parsed with its depth and size bounded, and quoted by excerpts", "[scene][hostile]") {
+  using json = nlohmann::json;
+  CHECK(parse_bounded<json>("[1, [2, [3]]]") == json::parse("[1, [2, [3]]]"));
+  CHECK_THROWS_AS(parse_bounded<json>(std::string(40, '[') + std::string(40, ']')), json_too_big);
+  // The bound counts the parser's events: the array's start and end and its three numbers are five.
+  CHECK_THROWS_AS(parse_bounded<json>("[1, 2, 3]", 4), json_too_big);
+  CHECK(parse_bounded<json>("[1, 2, 3]", 5).size() == 3);
+  CHECK(key_excerpt("short") == "short");
+  CHECK(key_excerpt(std::string(100, 'k')) == std::string(40, 'k') + "...");
+  CHECK(excerpt(json::parse("[1, 2]")) == "an array of 2 values");
+  CHECK(excerpt(json("abc")) == "the string \"abc\"");
 }
