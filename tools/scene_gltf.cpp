@@ -70,7 +70,7 @@ const unsigned char* view_bytes(const tinygltf::Model& m, int view, std::size_t 
                       " are past the " + std::to_string(b.data.size()) + " of buffers[" + std::to_string(v.buffer) + "]"};
   if (stride > 252 || (v.byteStride != 0 && stride < size))
     throw bad_element{in + ".byteStride: " + std::to_string(stride) + " is not from " + std::to_string(size) + " to 252"};
-  // In 64 bits, no product wraps: count is below 2^32 (read_accessor's bound) and stride below 2^8.
+  // In 64 bits no product wraps: the budget bounds count (read_accessor) far below 2^56, and stride is below 2^8.
   const std::uint64_t end = count == 0 ? 0 : std::uint64_t(stride) * (count - 1) + size;
   if (offset > v.byteLength || end > v.byteLength - offset)
     throw bad_element{where + ": " + std::to_string(count) + " elements from byte " + std::to_string(offset) + " do not fit the " +
