@@ -17,6 +17,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <dstrans/frame/plan.hpp>
 #include <tiny_gltf.h>
 
 #include "gltf_types.hpp"
@@ -463,16 +464,11 @@ class builder {
     camera_ = true;
   }
 
-  // The centre and radius of a sphere around every object.
+  // The centre and radius of a sphere around every object (the renderer's, which fits shadow maps to it),
+  // with a radius of at least 1e-3, for a camera to frame.
   std::pair<glm::vec3, float> bounds() const {
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (const object& o : s_.objects)
-      for (const glm::vec3& p : o.geometry.positions) {
-        const glm::vec3 w = glm::vec3(o.transform * glm::vec4(p, 1.0f));
-        lo = glm::min(lo, w);
-        hi = glm::max(hi, w);
-      }
-    return {0.5f * (lo + hi), std::max(0.5f * glm::length(hi - lo), 1e-3f)};
+    const render::frame_detail::bounds b = render::frame_detail::scene_bounds(s_);
+    return {b.centre, std::max(b.radius, 1e-3f)};
   }
 
   // A camera 45 degrees wide that sees the whole bounding sphere, from the front, above and right.
