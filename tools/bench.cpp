@@ -473,9 +473,9 @@ result<json> soft_shadow_records(const scene& room, const render::options& base,
     fine.shadow_size = 3 * o.shadow_size;
     fine.frames = 1;
     auto edges = draw(lit, fine);
+    if (!edges) return failure{edges.error()};
     fine.shadow_filter = 15;
     auto reference = draw(lit, fine);
-    if (!edges) return failure{edges.error()};
     if (!reference) return failure{reference.error()};
     std::vector<bool> penumbra(std::size_t(o.width * o.height));
     std::size_t penumbra_pixels = 0;
@@ -520,6 +520,7 @@ result<json> gltf_records(const scene& shelf, const render::options& base, const
   auto peeled = draw(shelf, o);
   if (!peeled) return failure{peeled.error()};
   const std::vector<bool> glass = render::glass_pixels(*peeled);
+  const std::size_t triangles = flatten(shelf).indices.size() / 3;
   struct variant {
     const char* name;
     T method;
@@ -548,7 +549,7 @@ result<json> gltf_records(const scene& shelf, const render::options& base, const
                                            {"scene", "glass_shelf"},
                                            {"backend", backend},
                                            {"settings", {{"lights", shelf.lights.size()}, {"width", with.width}, {"height", with.height},
-                                                         {"frames", f->frames}, {"triangles", flatten(shelf).indices.size() / 3}}},
+                                                         {"frames", f->frames}, {"triangles", triangles}}},
                                            {"frame_ms", f->frame_ms},
                                            {"frame_ms_spread", f->frame_ms_spread},
                                            {"pass_ms", f->pass_ms},

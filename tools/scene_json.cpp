@@ -128,7 +128,6 @@ class reader {
 
 constexpr float big = 1e6f;
 
-
 // The scene's estimated cost so far (scene_budget), checked before each thing is built.
 struct cost {
   const scene_budget& budget;
