@@ -1007,6 +1007,23 @@ int bench(std::vector<std::string> args) {
         std::fprintf(stderr, "dstrans bench: %s\n", loaded->error().c_str());
         return 1;
       }
+    {  // glass_shelf.gltf: peeling over interlacing, timed in pairs as the targets are (no source sets one)
+      render::options o = base;
+      o.shadows = S::transparent;
+      o.refraction = 8.0f;
+      const json settings = {{"shadows", "transparent"}, {"refraction", true}};
+      paired_side interlaced{o, settings, {}}, peeling{o, settings, {}};
+      interlaced.settings["technique"] = "interlaced";
+      peeling.o.method = T::peeling;
+      peeling.settings["technique"] = "peeling";
+      auto r = paired_record("peeling / interlaced, transparent shadows", *shelf, "glass_shelf_paired", interlaced, peeling,
+                             std::nullopt, nullptr, quick, backend, clock, meter);
+      if (!r) {
+        std::fprintf(stderr, "dstrans bench: glass_shelf.gltf in pairs on %s: %s\n", backend.c_str(), r.error().c_str());
+        return 1;
+      }
+      results.push_back(*r);
+    }
     std::vector<std::pair<std::string, std::string>> strips;  // the temporal benchmark's crops, a PNG a backend
     for (const std::string& b : {backend, std::string(backend == "gl" ? "vk" : "gl")}) {
       auto other = b == backend ? result<std::unique_ptr<gpu>>(failure{"unused"}) : open_gpu(b, device);
