@@ -683,10 +683,9 @@ def write_shadow_kinds(w, paired, soft):
     for r in soft:
         st = r["settings"]
         f = st["shadow_filter"]
-        w("| %s | %s | %s | %.2f | %.2f | %d | %s | %s |" % (
+        w("| %s | %s | %s | %.2f | %.2f | %d | %.2f | %.3f |" % (
             r["backend"], st["light"], "hard" if f == 1 else "%dx%d" % (f, f), ms(r), r["rmse"], st["penumbra_pixels"],
-            "-" if r["rmse_transparent"] is None else "%.2f" % r["rmse_transparent"],
-            "-" if r["flip_transparent"] is None else "%.3f" % r["flip_transparent"]))
+            r["rmse_transparent"], r["flip_transparent"]))
     w("")
 
 
