@@ -156,6 +156,22 @@ TEST_CASE("VK: clear errors for layouts the device cannot hold, bad shaders and 
   REQUIRE_FALSE(wrong_width);
   CHECK_THAT(wrong_width.error(), Catch::Contains("does not match target 3 (RG32F)"));
 
+  // Material textures past the device's array layers are refused before anything is allocated; a scene's are made.
+  texture_array wide;
+  wide.width = wide.height = 1;
+  wide.layers = 1 << 20;
+  wide.levels = {std::vector<std::uint8_t>(4)};
+  auto past = dev.make_texture_array(wide, "wide textures");
+  REQUIRE_FALSE(past);
+  CHECK_THAT(past.error(), Catch::StartsWith("wide textures: 1048576 layers of 1 x 1") && Catch::Contains("exceed the device's array images"));
+  scene textured;
+  textured.textures.push_back({2, 2, std::vector<std::uint8_t>(16, 255)});
+  auto made = dev.make_texture_array(texture_array_of(textured), "textures");
+  INFO(made.error());
+  REQUIRE(made);
+  CHECK(made->view != VK_NULL_HANDLE);
+  dev.destroy(*made);
+
   // The same text compiles once: the cache hands back the same module.
   auto again = dev.get_shader(glsl::fullscreen_vertex_shader(), spirv::stage::vertex, "fullscreen again");
   REQUIRE(again);

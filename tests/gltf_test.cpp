@@ -21,6 +21,7 @@
 #include <scene_gltf.hpp>
 #include <scene_json.hpp>
 
+#include "effect_scenes.hpp"
 #include "gltf_writer.hpp"
 #include "json_mutations.hpp"
 
@@ -44,7 +45,7 @@ result<scene> load(gltf_doc& d, const std::string& name) {
 }  // namespace
 
 TEST_CASE("a shape placed past the float range is told", "[scene][gltf]") {
-  const shape tri{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}}, {0, 1, 2}};
+  const shape tri{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}}, {0, 1, 2}, {}};
   CHECK(finite_in_world(tri, glm::mat4(1.0f)));
   CHECK(finite_in_world(tri, glm::scale(glm::mat4(1.0f), glm::vec3(1e12f))));
   CHECK_FALSE(finite_in_world(tri, glm::translate(glm::scale(glm::mat4(1.0f), glm::vec3(1e12f)), glm::vec3(1e30f))));
@@ -76,12 +77,38 @@ TEST_CASE("assimp's glTF test models: the box loads the same from .gltf, .glb an
     for (const glm::vec3& n : m.normals) CHECK(glm::length(n) == Approx(1.0f));
     CHECK(s->lights.size() == 1);  // the default light of a file without lights
     CHECK(s->lights[0].shadows);
+    // CesiumLogoFlat.png (a palette PNG) as RGBA, read at TEXCOORD_0.
+    REQUIRE(s->textures.size() == 1);
+    CHECK(s->textures[0].width == 211);
+    CHECK(s->textures[0].valid());
+    CHECK(s->materials[0].texture == 0);
+    CHECK(m.uvs.size() == m.positions.size());
     boxes.push_back(*s);
   }
+  // assimp's .gltf copy samples it mirrored along s and clamped along t; the other two repeat.
+  CHECK(boxes[0].textures[0].wrap_s == wrap::mirror);
+  CHECK(boxes[0].textures[0].wrap_t == wrap::clamp);
+  CHECK(boxes[1].textures[0].wrap_s == wrap::repeat);
   for (std::size_t i = 1; i < boxes.size(); ++i) {
     CHECK(flatten(boxes[i]).positions == flatten(boxes[0]).positions);
+    CHECK(flatten(boxes[i]).uvs == flatten(boxes[0]).uvs);
+    CHECK(boxes[i].textures[0].rgba == boxes[0].textures[0].rgba);
     CHECK(boxes[i].materials[0].diffuse == boxes[0].materials[0].diffuse);
   }
+  // KHR_texture_transform (used, not required): materials 0 and 2 move the same coordinates by (0.5, 0) and (0.5, 0.5).
+  auto moved = load_scene(models + "/textureTransform/TextureTransformTest.gltf");
+  INFO((moved ? "" : moved.error()));
+  REQUIRE(moved);
+  CHECK(moved->textures.size() == 5);
+  auto with_material = [&](std::uint32_t m) -> const shape& {
+    const auto o = std::find_if(moved->objects.begin(), moved->objects.end(), [&](const object& x) { return x.material == m; });
+    REQUIRE(o != moved->objects.end());
+    return o->geometry;
+  };
+  const shape &u = with_material(0), &uv = with_material(2);  // "Offset U" and "Offset UV"
+  REQUIRE(u.uvs.size() == 6);  // without normals: three vertices a triangle (flat)
+  REQUIRE(uv.uvs.size() == 6);
+  for (std::size_t v = 0; v < 6; ++v) CHECK(glm::distance(uv.uvs[v], u.uvs[v] + glm::vec2(0.0f, 0.5f)) < 1e-6f);
   // Larger valid models: many nodes and meshes, a camera, strips and fans.
   for (const char* file : {"2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "cameras/Cameras.gltf", "ClearCoat-glTF/ClearCoatTest.gltf",
                            "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_05.gltf",
@@ -280,12 +307,77 @@ TEST_CASE("glTF cameras and punctual lights, and the defaults of a file without 
   CHECK(b->lights[0].shadows);
 }
 
+TEST_CASE("glTF base colour textures: coordinates, samplers, MASK per texel, BLEND by texel alpha, transforms", "[scene][gltf]") {
+  gltf_doc d;
+  const int p = d.positions(triangle), st = d.texcoords({0, 0, 1, 0, 0, 1}), st1 = d.texcoords({0.5, 0.5, 0.5, 0.5, 0.5, 0.5});
+  texture opaque = testing::chequer(2, 1, {255, 0, 0, 255}, {0, 255, 0, 255}), translucent = opaque;
+  translucent.rgba[3] = 100;
+  translucent.wrap_s = wrap::clamp;
+  translucent.wrap_t = wrap::mirror;
+  const int t0 = d.texture(opaque), t1 = d.texture(translucent);
+  d.j["images"].push_back({{"uri", "data:image/png;base64,bm90IGEgUE5H"}});  // "not a PNG", which no material samples
+  auto add = [&](json m, json attributes) {
+    d.j["materials"].push_back(m);
+    attributes["POSITION"] = p;
+    d.mesh({{"attributes", attributes}, {"material", d.j["materials"].size() - 1}});
+  };
+  auto textured = [&](int t, json more = json::object()) {
+    json info = {{"index", t}};
+    info.update(more);
+    return json{{"baseColorFactor", {0.5, 1, 1, 0.8}}, {"baseColorTexture", info}};
+  };
+  add({{"pbrMetallicRoughness", textured(t0)}}, {{"TEXCOORD_0", st}});                                       // OPAQUE
+  add({{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}, {"pbrMetallicRoughness", textured(t0)}}, {{"TEXCOORD_0", st}});
+  add({{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", t1}}}}}}, {{"TEXCOORD_0", st}});
+  add({{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", t0}}}}}}, {{"TEXCOORD_0", st}});
+  add({{"pbrMetallicRoughness", textured(t0, {{"texCoord", 1}})}}, {{"TEXCOORD_0", st}, {"TEXCOORD_1", st1}});
+  add({{"pbrMetallicRoughness", textured(t0, {{"extensions", {{"KHR_texture_transform", {{"offset", {1, 2}}, {"rotation", M_PI / 2}, {"scale", {2, 3}}}}}}})}},
+      {{"TEXCOORD_0", st}});
+  auto s = load(d, "textures");
+  INFO((s ? "" : s.error()));
+  REQUIRE(s);
+  REQUIRE(s->objects.size() == 6);
+  REQUIRE(s->textures.size() == 2);  // each glTF texture once, however many materials sample it
+  CHECK(s->textures[0].rgba == opaque.rgba);
+  CHECK(s->textures[1].rgba == translucent.rgba);
+  CHECK(s->textures[1].wrap_s == wrap::clamp);
+  CHECK(s->textures[1].wrap_t == wrap::mirror);
+  auto of = [&](std::size_t o) { return s->materials[s->objects[o].material]; };
+  CHECK(of(0).texture == 0);
+  CHECK(of(0).alpha == 1.0f);  // OPAQUE: neither the factor's alpha nor the texels'
+  CHECK(of(0).alpha_cutoff == 0.0f);
+  CHECK(of(0).diffuse == glm::vec3(0.5f, 1.0f, 1.0f));
+  CHECK(s->objects[0].geometry.uvs == std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}});
+  CHECK(of(1).alpha_cutoff == 0.25f);  // MASK: tested per texel, the factor's alpha with the texel's
+  CHECK(of(1).alpha == Approx(0.8f));
+  CHECK_FALSE(of(1).transparent());
+  CHECK(of(2).texture == 1);
+  CHECK(of(2).alpha == Approx(254.0f / 255.0f));  // BLEND, opaque factors, translucent texels: glass
+  CHECK(of(2).transparent());
+  CHECK(of(3).alpha == 1.0f);  // BLEND over opaque texels and factors: nothing to blend
+  CHECK(s->objects[4].geometry.uvs == std::vector<glm::vec2>(3, glm::vec2(0.5f)));  // texCoord 1
+  // T R S: (1, 0) scaled (2, 0), turned by 90 degrees as the extension turns (0, -2), moved (1, 0).
+  const std::vector<glm::vec2>& turned = s->objects[5].geometry.uvs;
+  REQUIRE(turned.size() == 3);
+  CHECK(glm::distance(turned[0], glm::vec2(1, 2)) < 1e-6f);
+  CHECK(glm::distance(turned[1], glm::vec2(1, 0)) < 1e-6f);
+  CHECK(glm::distance(turned[2], glm::vec2(4, 2)) < 1e-6f);
+}
+
 TEST_CASE("bad glTF elements get an error naming them, never a crash", "[scene][gltf][hostile]") {
   struct bad {
     std::function<void(gltf_doc&)> edit;
     std::string says;
   };
   auto tri = [](gltf_doc& d) { return d.mesh({{"attributes", {{"POSITION", d.positions(triangle)}}}}); };
+  // A triangle whose material samples a texture of one texel, with texture coordinates `st` (none: empty).
+  const std::vector<float> st = {0, 0, 1, 0, 0, 1};
+  auto textured = [](gltf_doc& d, const std::vector<float>& coordinates) {
+    d.j["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", d.texture(testing::chequer(1, 1, {}, {}))}}}}}}};
+    json attributes = {{"POSITION", d.positions(triangle)}};
+    if (!coordinates.empty()) attributes["TEXCOORD_0"] = d.texcoords(coordinates);
+    d.mesh({{"attributes", attributes}, {"material", 0}});
+  };
   for (const bad& b : std::vector<bad>{
            {[&](gltf_doc& d) { d.mesh({{"attributes", {{"POSITION", 7}}}}); }, "meshes[0].primitives[0].attributes.POSITION: 7 is not one of the 0 there are"},
            {[&](gltf_doc& d) { d.mesh({{"attributes", {{"POSITION", d.positions({0, 0, 0, NAN, 0, 0, 0, 1, 0})}}}}); },
@@ -367,6 +459,34 @@ TEST_CASE("bad glTF elements get an error naming them, never a crash", "[scene][
               d.j["extensionsRequired"] = {"KHR_texture_basisu"};
             },
             "extensionsRequired: KHR_texture_basisu is not an extension dstrans reads"},
+           {[&](gltf_doc& d) {
+              d.j["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 5}}}}}}};
+              d.mesh({{"attributes", {{"POSITION", d.positions(triangle)}}}, {"material", 0}});
+            },
+            "materials[0].pbrMetallicRoughness.baseColorTexture.index: 5 is not one of the 0 there are"},
+           {[&](gltf_doc& d) { textured(d, {}); }, "meshes[0].primitives[0].attributes.TEXCOORD_0: absent, and its material's baseColorTexture reads it"},
+           {[&](gltf_doc& d) { textured(d, {0, 0, 1, 0}); }, "meshes[0].primitives[0].attributes.TEXCOORD_0: 2 coordinates for 3 positions"},
+           {[&](gltf_doc& d) { textured(d, {0, 0, 1, 0, NAN, 1}); }, "meshes[0].primitives[0].attributes.TEXCOORD_0[2]: not finite"},
+           {[&](gltf_doc& d) {
+              textured(d, st);
+              d.j["images"][0]["uri"] = "data:image/png;base64,bm90IGEgUE5H";  // "not a PNG"
+            },
+            "images[0]: not an image that can be read"},
+           {[&](gltf_doc& d) {
+              textured(d, st);
+              d.j["images"][0]["uri"] = "no_such_texture.png";
+            },
+            "no_such_texture.png"},
+           {[&](gltf_doc& d) {
+              textured(d, st);
+              d.j["textures"][0]["source"] = 3;
+            },
+            "textures[0].source: 3 is not one of the 1 there are"},
+           {[&](gltf_doc& d) {
+              textured(d, st);
+              d.j["samplers"][0]["wrapS"] = 5;
+            },
+            "samplers[0].wrapS: 5 is not 10497 (REPEAT), 33071 (CLAMP_TO_EDGE) or 33648 (MIRRORED_REPEAT)"},
            {[&](gltf_doc& d) {
               tri(d);
               d.j["materials"] = {{{"alphaMode", "CLEAR"}}};

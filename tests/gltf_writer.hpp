@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include <dstrans/scene.hpp>
+#include <frame_output.hpp>
 
 namespace dstrans {
 
@@ -48,7 +49,7 @@ struct gltf_doc {
     while (bin.size() % 4) bin += '\0';
     const std::size_t offset = bin.size();
     bin.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-    const int width = std::string(type) == "VEC3" ? 3 : 1;
+    const int width = std::string(type) == "VEC3" ? 3 : std::string(type) == "VEC2" ? 2 : 1;
     j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", values.size() * sizeof(T)}});
     j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1},
                               {"componentType", component},
@@ -58,6 +59,16 @@ struct gltf_doc {
   }
   int positions(const std::vector<float>& xyz) { return add(xyz, "VEC3", 5126); }
   int indices(const std::vector<std::uint32_t>& i) { return add(i, "SCALAR", 5125); }
+  int texcoords(const std::vector<float>& st) { return add(st, "VEC2", 5126); }
+
+  // Texture t as a PNG image (a data URI) with a sampler of its wrap modes; the glTF texture's index.
+  int texture(const dstrans::texture& t) {
+    const int modes[] = {10497, 33071, 33648};  // REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT, as enum wrap
+    j["images"].push_back({{"uri", "data:image/png;base64," + base64(render::png_bytes(render::image{t.width, t.height, t.rgba}))}});
+    j["samplers"].push_back({{"wrapS", modes[int(t.wrap_s)]}, {"wrapT", modes[int(t.wrap_t)]}});
+    j["textures"].push_back({{"source", j["images"].size() - 1}, {"sampler", j["samplers"].size() - 1}});
+    return int(j["textures"].size()) - 1;
+  }
 
   // A mesh of one primitive, held by a new root node with `node` properties; its index.
   int mesh(json primitive, json node = json::object()) {
@@ -84,17 +95,24 @@ struct gltf_doc {
 };
 
 
-// Scene s as glTF: each object a mesh (positions, normals, indices) on a node with its transform; each
-// material's diffuse and alpha as its base colour (BLEND where transparent; refractive glass as
-// KHR_materials_transmission of 1 - alpha instead), rough and not metallic so that it has no specular; each light a KHR_lights_punctual light whose intensity scene_gltf.hpp maps back to
-// the light's; the camera a perspective camera on a node looking from the view's position at its target.
+// Scene s as glTF: each object a mesh (positions, normals, indices, texture coordinates where it has them)
+// on a node with its transform; each material's diffuse and alpha as its base colour (BLEND where
+// transparent, MASK where alpha-tested; refractive glass as KHR_materials_transmission of 1 - alpha
+// instead), its texture as a PNG base colour texture, rough and not metallic so that it has no specular;
+// each light a KHR_lights_punctual light whose intensity scene_gltf.hpp maps back to the light's; the
+// camera a perspective camera on a node looking from the view's position at its target.
 inline gltf_doc from_scene(const scene& s) {
   using json = nlohmann::json;
   gltf_doc d;
+  std::vector<int> textures;
+  for (const texture& t : s.textures) textures.push_back(d.texture(t));
   for (const material& m : s.materials) {
-    json g = {{"alphaMode", m.alpha < 1.0f && !m.refractive ? "BLEND" : "OPAQUE"},
+    const bool masked = m.alpha_cutoff > 0.0f;
+    json g = {{"alphaMode", masked ? "MASK" : m.alpha < 1.0f && !m.refractive ? "BLEND" : "OPAQUE"},
               {"pbrMetallicRoughness", {{"baseColorFactor", {m.diffuse.x, m.diffuse.y, m.diffuse.z, m.refractive ? 1.0f : m.alpha}},
                                         {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
+    if (masked) g["alphaCutoff"] = m.alpha_cutoff;
+    if (m.texture >= 0) g["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", textures.at(std::size_t(m.texture))}};
     if (m.refractive) g["extensions"]["KHR_materials_transmission"]["transmissionFactor"] = 1.0f - m.alpha;
     d.j["materials"].push_back(g);
   }
@@ -104,11 +122,16 @@ inline gltf_doc from_scene(const scene& s) {
     return out;
   };
   auto matrix = [](const glm::mat4& m) { return std::vector<float>(glm::value_ptr(m), glm::value_ptr(m) + 16); };
-  for (const object& o : s.objects)
-    d.mesh({{"attributes", {{"POSITION", d.positions(floats(o.geometry.positions))}, {"NORMAL", d.positions(floats(o.geometry.normals))}}},
-            {"indices", d.indices(o.geometry.indices)},
-            {"material", o.material}},
+  for (const object& o : s.objects) {
+    json attributes = {{"POSITION", d.positions(floats(o.geometry.positions))}, {"NORMAL", d.positions(floats(o.geometry.normals))}};
+    if (!o.geometry.uvs.empty()) {
+      std::vector<float> st;
+      for (const glm::vec2& uv : o.geometry.uvs) st.insert(st.end(), {uv.x, uv.y});
+      attributes["TEXCOORD_0"] = d.texcoords(st);
+    }
+    d.mesh({{"attributes", attributes}, {"indices", d.indices(o.geometry.indices)}, {"material", o.material}},
            {{"matrix", matrix(o.transform)}});
+  }
   d.j["cameras"] = {{{"type", "perspective"},
                      {"perspective", {{"yfov", glm::radians(s.view.fov_y)}, {"znear", s.view.near_plane}, {"zfar", s.view.far_plane}}}}};
   d.root({{"camera", 0}, {"matrix", matrix(glm::inverse(glm::lookAt(s.view.position, s.view.target, s.view.up())))}});

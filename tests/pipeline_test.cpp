@@ -42,9 +42,9 @@ static_assert(pipeline<effect_set<effect::shadows>>::shadow_bytes_per_texel == 4
 
 TEST_CASE("each rung of the ladder calls for exactly one effect more, with a reason", "[pipeline][features]") {
   const effect added[] = {effect::shadows, effect::transparency, effect::refraction, effect::transparent_shadows,
-                          effect::light_volumes};
+                          effect::light_volumes, effect::textures};
   CHECK(scene_features(effect_scene(rung::nothing)).empty());
-  for (int i = 0; i < 5; ++i) {
+  for (int i = 0; i < 6; ++i) {
     const auto before = scene_features(effect_scene(testing::all_rungs[i])), after = scene_features(effect_scene(testing::all_rungs[i + 1]));
     INFO("rung " << i + 1);
     CHECK(effects_of(after) == effects_of(before).with(added[i]));
@@ -54,12 +54,22 @@ TEST_CASE("each rung of the ladder calls for exactly one effect more, with a rea
   CHECK(scene_features(effect_scene(rung::seen)).back().why ==
         "lights[1] casts shadows and reaches objects[2], which is transparent");
   CHECK(scene_features(effect_scene(rung::particles)).back().why == "particles[0] draws 60 particles of material 3");
+  CHECK(scene_features(effect_scene(rung::textured)).back().why == "objects[0] has material 0, which samples textures[0]");
+  scene tested = effect_scene(rung::nothing);
+  tested.materials[1].alpha_cutoff = 0.5f;
+  tested.materials[1].alpha = 0.3f;  // alpha-tested: opaque where drawn, so not glass
+  REQUIRE(scene_features(tested).size() == 1);
+  CHECK(scene_features(tested)[0].what == effect::textures);
+  CHECK(scene_features(tested)[0].why == "objects[1] has material 1, alpha-tested at 0.5");
+  tested.materials[1].hair = true;  // hair takes its factors alone
+  CHECK(effects_of(scene_features(tested)) == effect_set<effect::many_layers>::value);
 }
 
 TEST_CASE("the plans of neighbouring rungs differ by exactly the added effect's targets and switches", "[pipeline]") {
   auto plan = [](rung r) { return plan_pipeline(effects_of(scene_features(effect_scene(r)))); };
   const pipeline_plan nothing = plan(rung::nothing), shadows = plan(rung::shadows), glass = plan(rung::glass),
-                      refractive = plan(rung::refractive), seen = plan(rung::seen), smoke = plan(rung::particles);
+                      refractive = plan(rung::refractive), seen = plan(rung::seen), smoke = plan(rung::particles),
+                      textured = plan(rung::textured);
   // A scene with no glass and no shadows: plain deferred shading.
   CHECK(nothing.passes.size() == 3);
   CHECK(switches_of(nothing).empty());
@@ -83,8 +93,11 @@ TEST_CASE("the plans of neighbouring rungs differ by exactly the added effect's 
   CHECK(minus(switches_of(smoke), switches_of(seen)) ==
         std::set<std::string>{"bake: DST_LIGHT_VOLUMES", "particles: DST_LIGHT_VOLUMES"});
   CHECK(smoke.bytes_per_pixel == seen.bytes_per_pixel);
-  for (const pipeline_plan* p : {&nothing, &shadows, &glass, &refractive, &seen})
-    CHECK(minus(switches_of(*p), switches_of(smoke)).empty());
+  // Textures: texture coordinates and the texel in the passes that draw the scene's surfaces, no target.
+  CHECK(targets_of(textured) == targets_of(smoke));
+  CHECK(minus(switches_of(textured), switches_of(smoke)) == std::set<std::string>{"gbuffer: DST_TEXTURES", "shadow: DST_TEXTURES"});
+  for (const pipeline_plan* p : {&nothing, &shadows, &glass, &refractive, &seen, &smoke})
+    CHECK(minus(switches_of(*p), switches_of(textured)).empty());
 }
 
 TEST_CASE("the run-time plan of a set is the compile-time plan of that set", "[pipeline]") {

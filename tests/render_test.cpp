@@ -909,24 +909,133 @@ TEST_CASE("soft shadows: the penumbra of a coloured and an opaque pane nears a s
 // A glTF file is drawn as the scene it describes: the coloured pane's shadow scene written as glTF
 // (gltf_writer.hpp) and read back renders as the scene itself, on both backends. glTF has no ambient
 // light, so the loaded scene keeps dstrans's default and the test sets the original's.
-TEST_CASE("a glTF file renders as the scene it describes", "[render][gltf]") {
-  const scene s = shadow_scene(0.5f, glm::vec3(1.0f, 0.5f, 0.25f));
-  gltf_doc d = from_scene(s);
-  const std::string path = d.write("shadow_scene");
-  auto loaded = load_scene(path);
-  std::filesystem::remove(path);
-  INFO((loaded ? "" : loaded.error()));
-  REQUIRE(loaded);
-  loaded->ambient = s.ambient;
+namespace {
+
+// shadow_scene with textures: the floor in 4 m squares of a texture in four colours (yellow, red / green,
+// blue, 8 texels each), the pane above it opaque and alpha-tested by a white texture whose left half is
+// clear, so that the spot light passes that half alone.
+scene textured_scene() {
+  scene s = shadow_scene(1.0f, glm::vec3(1.0f));
+  s.lights[0].intensity = 0.9f;  // the light buffer's RGBA8 clamps light at 1, forward rendering does not
+  texture quads;
+  quads.width = quads.height = 16;
+  const glm::u8vec4 colours[4] = {{255, 255, 0, 255}, {255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}};
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const glm::u8vec4 c = colours[(y / 8) * 2 + x / 8];
+      quads.rgba.insert(quads.rgba.end(), {c.r, c.g, c.b, c.a});
+    }
+  texture half = quads;
+  for (std::size_t t = 0; t < half.rgba.size(); t += 4) {
+    const bool clear = (t / 4) % 16 < 8;
+    half.rgba[t] = half.rgba[t + 1] = half.rgba[t + 2] = 255;
+    half.rgba[t + 3] = clear ? 0 : 255;
+  }
+  s.textures = {quads, half};
+  s.materials[0].texture = 0;
+  s.materials[1].texture = 1;
+  s.materials[1].alpha_cutoff = 0.5f;
+  for (const glm::vec3& p : s.objects[0].geometry.positions) s.objects[0].geometry.uvs.emplace_back(p.x * 0.25f, p.z * 0.25f);
+  for (const glm::vec3& p : s.objects[1].geometry.positions) s.objects[1].geometry.uvs.emplace_back(p.x + 0.5f, 0.5f - p.y);
+  return s;
+}
+
+// Calls visit(i, p) for every pixel i of frame f of scene s that shows a surface at y = 0 (shadow_scene's
+// floor), with its world position p.
+template <class Visit>
+void floor_top_pixels(const frame& f, const scene& s, const options& o, Visit&& visit) {
+  const glm::mat4 to_world = render::camera_frame(s, o).inv_view_proj;
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      const std::size_t i = std::size_t(y * o.width + x);
+      const float depth = gbuffer_at(f, i).depth;
+      const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), depth, 1.0f);
+      if (depth < 1.0f && std::fabs(h.y / h.w) <= 0.01f) visit(i, glm::vec3(h) / h.w);
+    }
+}
+}  // namespace
+
+TEST_CASE("textured surfaces: texels in the G-buffer, alpha-tested cut-outs in the shadow, forward alike", "[render][textures]") {
+  const scene s = textured_scene();
   const options o = small(96, 96);
+  options forward = o;
+  forward.method = render::technique::forward;
   std::optional<frame> first;
   for (backend b : backends) {
-    auto want = draw(b, s, o), got = draw(b, *loaded, o);
-    if (!want || !got) continue;
+    auto f = draw(b, s, o), fw = draw(b, s, forward);
+    if (!f || !fw) continue;
     INFO(name(b));
-    CHECK(rmse(got->final_image, want->final_image) < 1.0);
-    if (first) CHECK(rmse(first->final_image, got->final_image) < 1.0);
-    else first = std::move(*got);
+    std::size_t texels = 0, lit = 0, shadowed = 0;
+    floor_top_pixels(*f, s, o, [&](std::size_t i, glm::vec3 p) {
+      // Away from the squares' edges, where filtering mixes two colours, the diffuse colour is the square's.
+      const glm::vec2 uv = glm::fract(glm::vec2(p.x, p.z) * 0.25f);
+      const glm::vec2 edge = glm::min(glm::abs(uv - 0.5f), glm::min(uv, 1.0f - uv));
+      if (edge.x > 0.12f && edge.y > 0.12f) {
+        ++texels;
+        const std::uint8_t* t = &s.textures[0].rgba[std::size_t(((uv.y < 0.5f ? 0 : 8) * 16 + (uv.x < 0.5f ? 0 : 8)) * 4)];
+        const glm::vec3 want = glm::vec3(t[0], t[1], t[2]) / 255.0f;
+        for (int c = 0; c < 3; ++c) CHECK(gbuffer_at(*f, i).diffuse[c] == Approx(want[c]).margin(3.0 / 255.0));
+      }
+      // Under the pane (its shadow 1.5 times its size on the floor): its clear half lets the light through.
+      if (std::fabs(p.z) < 0.6f && std::fabs(p.x) > 0.15f && std::fabs(p.x) < 0.65f) {
+        if (p.x < 0.0f) {
+          ++lit;
+          CHECK(light_at(*f, i).light.x > 0.3f);
+        } else {
+          ++shadowed;
+          CHECK(light_at(*f, i).light == glm::vec3(0.0f));
+        }
+      }
+    });
+    CHECK(texels > 500);
+    CHECK(lit > 20);
+    CHECK(shadowed > 20);
+    // Nothing here is glass: forward rendering samples the same texels and draws the same frame.
+    CHECK(rmse(fw->final_image, f->final_image) < 2.0);
+    if (first) CHECK(rmse(first->final_image, f->final_image) < 1.0);
+    else first = std::move(*f);
+  }
+}
+
+TEST_CASE("a textured surface without texture coordinates reads its texture at (0, 0)", "[render][textures]") {
+  scene s = textured_scene();
+  s.objects[0].geometry.uvs.clear();
+  s.objects[1].geometry.uvs.clear();
+  s.textures[0].wrap_s = s.textures[0].wrap_t = wrap::clamp;  // (0, 0) is the yellow corner's texel
+  const options o = small(96, 96);
+  for (backend b : backends) {
+    auto f = draw(b, s, o);
+    if (!f) continue;
+    INFO(name(b));
+    std::size_t floor = 0;
+    floor_top_pixels(*f, s, o, [&](std::size_t i, glm::vec3) {
+      ++floor;
+      CHECK(gbuffer_at(*f, i).diffuse == glm::vec3(1.0f, 1.0f, 0.0f));
+    });
+    CHECK(floor > 1000);
+  }
+}
+
+TEST_CASE("a glTF file renders as the scene it describes", "[render][gltf]") {
+  for (const scene& s : {shadow_scene(0.5f, glm::vec3(1.0f, 0.5f, 0.25f)), textured_scene()}) {
+    gltf_doc d = from_scene(s);
+    const std::string path = d.write("shadow_scene");
+    auto loaded = load_scene(path);
+    std::filesystem::remove(path);
+    INFO((loaded ? "" : loaded.error()));
+    REQUIRE(loaded);
+    loaded->ambient = s.ambient;
+    CHECK(loaded->textures.size() == s.textures.size());
+    const options o = small(96, 96);
+    std::optional<frame> first;
+    for (backend b : backends) {
+      auto want = draw(b, s, o), got = draw(b, *loaded, o);
+      if (!want || !got) continue;
+      INFO(name(b) << ", " << s.textures.size() << " textures");
+      CHECK(rmse(got->final_image, want->final_image) < 1.0);
+      if (first) CHECK(rmse(first->final_image, got->final_image) < 1.0);
+      else first = std::move(*got);
+    }
   }
 }
 
@@ -1119,7 +1228,8 @@ TEST_CASE("a pipeline without an effect carries none of its code", "[pipeline][g
                          step{testing::rung::shadows, testing::rung::glass, "dst_interlace_keep"},
                          step{testing::rung::glass, testing::rung::refractive, "dst_refraction_pixel"},
                          step{testing::rung::refractive, testing::rung::seen, "dst_transparent_shadow"},
-                         step{testing::rung::seen, testing::rung::particles, "dst_volume_light"}}) {
+                         step{testing::rung::seen, testing::rung::particles, "dst_volume_light"},
+                         step{testing::rung::particles, testing::rung::textured, "dst_material_texel"}}) {
     const options o = small(160, 90);
     auto shaders = [&](testing::rung r) {
       const scene s = testing::effect_scene(r);

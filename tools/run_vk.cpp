@@ -87,10 +87,10 @@ result<bool> read_back(vk::device& dev, const vk::renderer& r, const scene& s, f
 }  // namespace
 
 result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders) {
-  auto r = vk::renderer::create(dev, s, o, shaders);
-  if (!r) return failure{r.error()};
   auto meshes = vk::scene_geometry::create(dev, s);
   if (!meshes) return failure{meshes.error()};
+  auto r = vk::renderer::create(dev, s, o, shaders, (*meshes)->input());
+  if (!r) return failure{r.error()};
   std::vector<std::map<std::string, double>> frames;
   std::vector<double> totals;
   frame out;
@@ -110,7 +110,7 @@ result<std::vector<frame>> run_vk_sequence(vk::device& dev, const std::vector<sc
                                            const pass_shaders& shaders) {
   std::vector<frame> out;
   if (frames.empty()) return out;
-  auto r = vk::renderer::create(dev, frames.front(), o, shaders);
+  auto r = vk::renderer::create(dev, frames.front(), o, shaders, vk::vertex_input::streams(has_texture_coordinates(frames.front())));
   if (!r) return failure{r.error()};
   for (const scene& s : frames) {
     auto meshes = vk::scene_geometry::create(dev, s);
@@ -127,10 +127,10 @@ result<std::vector<frame>> run_vk_sequence(vk::device& dev, const std::vector<sc
 }
 
 result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders) {
-  auto r = vk::renderer::create(dev, s, o, shaders);
-  if (!r) return failure{r.error()};
   auto meshes = vk::scene_geometry::create(dev, s);
   if (!meshes) return failure{meshes.error()};
+  auto r = vk::renderer::create(dev, s, o, shaders, (*meshes)->input());
+  if (!r) return failure{r.error()};
   struct running {
     std::unique_ptr<vk::renderer> frames;
     std::unique_ptr<vk::scene_geometry> meshes;

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <vector>
@@ -18,6 +19,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <dstrans/frame/plan.hpp>
+#include <stb/stb_image.h>
 #include <tiny_gltf.h>
 
 #include "gltf_types.hpp"
@@ -235,8 +237,16 @@ std::vector<std::uint32_t> triangles(const std::vector<std::uint32_t>& refs, int
   return out;
 }
 
-// A primitive's geometry as a dstrans shape (scene_gltf.hpp: normals flat where absent, repaired where bad).
-shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, std::size_t most, const std::string& where) {
+// Where a material's texture coordinates come from: attribute TEXCOORD_<set> (-1: it has no texture),
+// mapped by `transform` (KHR_texture_transform's offset, rotation and scale).
+struct uv_source {
+  int set = -1;
+  glm::mat3 transform{1.0f};
+};
+
+// A primitive's geometry as a dstrans shape (scene_gltf.hpp: normals flat where absent, repaired where bad),
+// with the texture coordinates `uv` says.
+shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, std::size_t most, const uv_source& uv, const std::string& where) {
   auto position = p.attributes.find("POSITION");
   if (position == p.attributes.end()) throw bad_element{where + ".attributes.POSITION: absent"};
   const std::string pos_at = where + ".attributes.POSITION";
@@ -272,6 +282,22 @@ shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, st
     const float length = glm::length(n);
     return length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);  // a degenerate one draws nothing
   };
+  std::vector<glm::vec2> uvs;
+  if (uv.set >= 0) {
+    const std::string name = "TEXCOORD_" + std::to_string(uv.set), uv_at = where + ".attributes." + name;
+    auto found = p.attributes.find(name);
+    if (found == p.attributes.end()) throw bad_element{uv_at + ": absent, and its material's baseColorTexture reads it"};
+    const std::vector<double> st = read_accessor(
+        m, found->second, 2, {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+        most, uv_at);
+    if (st.size() / 2 != vertices)
+      throw bad_element{uv_at + ": " + std::to_string(st.size() / 2) + " coordinates for " + std::to_string(vertices) + " positions"};
+    for (std::size_t i = 0; i < vertices; ++i) {
+      if (!(std::fabs(st[2 * i]) <= 1e30 && std::fabs(st[2 * i + 1]) <= 1e30))
+        throw bad_element{uv_at + "[" + std::to_string(i) + "]: not finite"};
+      uvs.emplace_back(uv.transform * glm::vec3(float(st[2 * i]), float(st[2 * i + 1]), 1.0f));
+    }
+  }
   shape s;
   auto normal = p.attributes.find("NORMAL");
   if (normal == p.attributes.end()) {  // flat: each triangle's own three vertices
@@ -280,6 +306,7 @@ shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, st
         s.indices.push_back(std::uint32_t(s.positions.size()));
         s.positions.push_back(vertex(corners[t + k]));
         s.normals.push_back(face_normal(t));
+        if (!uvs.empty()) s.uvs.push_back(uvs[corners[t + k]]);
       }
     return s;
   }
@@ -301,13 +328,45 @@ shape primitive_shape(const tinygltf::Model& m, const tinygltf::Primitive& p, st
         repaired[corners[t + k]] = false;
       }
   s.indices = corners;
+  s.uvs = std::move(uvs);
   return s;
+}
+
+// The wrap mode of a glTF sampler's wrapS or wrapT.
+wrap wrap_of(int mode, const std::string& where) {
+  switch (mode) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return wrap::repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return wrap::clamp;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return wrap::mirror;
+  }
+  throw bad_element{where + ": " + std::to_string(mode) + " is not 10497 (REPEAT), 33071 (CLAMP_TO_EDGE) or 33648 (MIRRORED_REPEAT)"};
+}
+
+// Image `img`'s bytes (kept encoded by keep_encoded) decoded as RGBA8, at most `budget` bytes of texels.
+texture decoded(const tinygltf::Image& img, std::size_t budget, const std::string& where) {
+  if (img.image.empty() || img.image.size() > std::size_t(std::numeric_limits<int>::max()))
+    throw bad_element{where + ": no image data was read (" + (img.uri.empty() ? "bufferView " + std::to_string(img.bufferView) : key_excerpt(img.uri)) + ")"};
+  const int size = int(img.image.size());
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info_from_memory(img.image.data(), size, &w, &h, &channels))
+    throw bad_element{where + ": not an image that can be read (" + stbi_failure_reason() + ")"};
+  if (std::size_t(w) * std::size_t(h) * 4u > budget)
+    throw bad_element{where + ": " + std::to_string(w) + " x " + std::to_string(h) + " texels take " + mib(std::size_t(w) * std::size_t(h) * 4u) +
+                      " MiB, over what is left of the budget (" + mib(budget) + " MiB; --budget MIB raises it)"};
+  stbi_uc* pixels = stbi_load_from_memory(img.image.data(), size, &w, &h, &channels, 4);
+  if (!pixels) throw bad_element{where + ": not an image that can be read (" + stbi_failure_reason() + ")"};
+  texture t;
+  t.width = w;
+  t.height = h;
+  t.rgba.assign(pixels, pixels + std::size_t(w) * std::size_t(h) * 4u);
+  stbi_image_free(pixels);
+  return t;
 }
 
 // The extensions this file reads, which a file may require.
 const std::set<std::string>& readable_extensions() {
   static const std::set<std::string> k = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-                                          "KHR_materials_volume"};
+                                          "KHR_materials_volume", "KHR_texture_transform"};
   return k;
 }
 
@@ -358,6 +417,7 @@ class builder {
   scene build() {
     for (std::size_t i = 0; i < m_.materials.size(); ++i) {
       auto [mat, drawn] = from_gltf(m_.materials[i], at("materials", i));
+      uv_sources_.push_back(drawn ? add_texture(m_.materials[i], mat, at("materials", i)) : uv_source{});
       s_.materials.push_back(mat);
       drawn_.push_back(drawn);
     }
@@ -433,15 +493,83 @@ class builder {
         mat = *default_material_;
       }
       // Each element read costs its numbers as doubles and then its vertex: the budget bounds them all.
-      shape geometry = primitive_shape(m_, p, budget_.bytes / 32, where);
+      shape geometry = primitive_shape(m_, p, budget_.bytes / 32, p.material >= 0 ? uv_sources_[std::size_t(p.material)] : uv_source{}, where);
       if (!finite_in_world(geometry, world)) throw bad_element{node + ": its transform takes " + where + " past the float range"};
       vertices_ += geometry.positions.size();
-      if (vertices_ * bytes_per_vertex > budget_.bytes)  // checked as it grows: nodes may share a mesh many times
-        throw bad_element{where + ": the scene would take about " + mib(vertices_ * bytes_per_vertex) + " MiB by here (" +
-                          std::to_string(vertices_) + " vertices), over the budget of " + mib(budget_.bytes) +
-                          " MiB (--budget MIB raises it)"};
+      if (used() > budget_.bytes)  // checked as it grows: nodes may share a mesh many times
+        throw bad_element{where + ": the scene would take about " + mib(used()) + " MiB by here (" + std::to_string(vertices_) +
+                          " vertices), over the budget of " + mib(budget_.bytes) + " MiB (--budget MIB raises it)"};
       s_.objects.push_back({std::move(geometry), world, mat});
     }
+  }
+
+  // The bytes of the vertices and texels read so far.
+  std::size_t used() const { return vertices_ * bytes_per_vertex + texel_bytes_; }
+
+  // Material `g`'s base colour texture as `mat`'s (decoded once however many materials use it; scene_gltf.hpp
+  // says how alpha and MASK use it), and where its texture coordinates come from.
+  uv_source add_texture(const tinygltf::Material& g, material& mat, const std::string& where) {
+    const tinygltf::TextureInfo& info = g.pbrMetallicRoughness.baseColorTexture;
+    if (info.index < 0) return {};
+    const std::string in = where + ".pbrMetallicRoughness.baseColorTexture";
+    uv_source uv = texture_transform(info, in);
+    if (uv.set < 0) throw bad_element{in + ".texCoord: " + std::to_string(uv.set) + " is not a set"};
+    const tinygltf::Texture& t = item(m_.textures, info.index, in + ".index");
+    const std::string tin = at("textures", std::size_t(info.index));
+    auto [known, inserted] = texture_of_.try_emplace(info.index, int(s_.textures.size()));
+    if (inserted) {
+      const tinygltf::Image& img = item(m_.images, t.source, tin + ".source");
+      texture decoded_texture = decoded(img, budget_.bytes - std::min(budget_.bytes, used()), at("images", std::size_t(t.source)));
+      if (t.sampler >= 0) {
+        const tinygltf::Sampler& sm = item(m_.samplers, t.sampler, tin + ".sampler");
+        const std::string sin = at("samplers", std::size_t(t.sampler));
+        decoded_texture.wrap_s = wrap_of(sm.wrapS, sin + ".wrapS");
+        decoded_texture.wrap_t = wrap_of(sm.wrapT, sin + ".wrapT");
+      }
+      texel_bytes_ += decoded_texture.rgba.size();
+      s_.textures.push_back(std::move(decoded_texture));
+    }
+    mat.texture = known->second;
+    if (g.alphaMode == "MASK" && g.alphaCutoff > 0.0) {
+      mat.alpha_cutoff = float(g.alphaCutoff);
+      mat.alpha *= float(std::clamp(g.pbrMetallicRoughness.baseColorFactor[3], 0.0, 1.0));
+    }
+    // A blended material whose factors leave it opaque is still glass where its texels are not.
+    const std::vector<std::uint8_t>& texels = s_.textures[std::size_t(mat.texture)].rgba;
+    bool translucent = false;
+    for (std::size_t k = 3; k < texels.size() && !translucent; k += 4) translucent = texels[k] < 255;
+    if (g.alphaMode == "BLEND" && !shader::dst_transparent(mat.alpha) && translucent) mat.alpha = 254.0f / 255.0f;
+    return uv;
+  }
+
+  // The texture coordinates of `info`: its set, and KHR_texture_transform's offset, rotation and scale (the
+  // extension's T R S, which may name another set).
+  static uv_source texture_transform(const tinygltf::TextureInfo& info, const std::string& where) {
+    uv_source uv{info.texCoord, glm::mat3(1.0f)};
+    const tinygltf::Value* t = extension(info.extensions, "KHR_texture_transform");
+    if (!t) return uv;
+    const std::string in = where + ".extensions.KHR_texture_transform";
+    auto pair = [&](const char* key, double fallback) {
+      if (!t->Has(key)) return glm::vec2(float(fallback));
+      const tinygltf::Value& v = t->Get(key);
+      if (!v.IsArray() || v.ArrayLen() != 2) throw bad_element{in + "." + key + ": 2 numbers are needed"};
+      glm::vec2 out;
+      for (int k = 0; k < 2; ++k) {
+        const tinygltf::Value& x = v.Get(k);
+        if (!x.IsNumber() || !(std::fabs(x.GetNumberAsDouble()) <= 1e30))
+          throw bad_element{in + "." + key + "[" + std::to_string(k) + "]: not a finite number"};
+        out[k] = float(x.GetNumberAsDouble());
+      }
+      return out;
+    };
+    const glm::vec2 offset = pair("offset", 0.0), scale = pair("scale", 1.0);
+    const auto rotation = float(ext_number(*t, "rotation", 0.0, in));
+    if (t->Has("texCoord")) uv.set = int(std::clamp(ext_number(*t, "texCoord", 0.0, in), -1.0, 1e6));
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    // Column-major: T R S with R = [c s; -s c] as the extension writes it row by row.
+    const glm::mat3 translate(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1), rotate(c, -s, 0, s, c, 0, 0, 0, 1), stretch(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+    uv.transform = translate * rotate * stretch;
+    return uv;
   }
 
   void add_camera(int index, const glm::mat4& world, const std::string& from) {
@@ -485,6 +613,9 @@ class builder {
   const scene_budget& budget_;
   scene s_;
   std::vector<bool> drawn_;
+  std::vector<uv_source> uv_sources_;   // by material
+  std::map<int, int> texture_of_;       // glTF texture to scene texture
+  std::size_t texel_bytes_ = 0;
   std::optional<std::uint32_t> default_material_;
   std::vector<int> path_;
   std::size_t vertices_ = 0;
@@ -503,6 +634,14 @@ bool read_limited(std::vector<unsigned char>* out, std::string* error, const std
   return true;
 }
 std::string as_written(const std::string& path, void*) { return path; }
+
+// tinygltf's image decoding, put off: the bytes are kept as they are, and only base colour textures are
+// decoded (builder::add_texture), each held to what is left of the budget.
+bool keep_encoded(tinygltf::Image* image, int, std::string*, std::string*, int, int, const unsigned char* bytes, int size, void*) {
+  image->image.assign(bytes, bytes + std::max(size, 0));
+  image->as_is = true;
+  return true;
+}
 
 }  // namespace
 
@@ -528,6 +667,7 @@ result<scene> load_gltf(const std::string& path, const scene_budget& budget) {
   tinygltf::TinyGLTF loader;
   std::size_t limit = budget.file_bytes;
   loader.SetFsCallbacks({tinygltf::FileExists, as_written, read_limited, tinygltf::WriteWholeFile, &limit});
+  loader.SetImageLoader(keep_encoded, nullptr);
   tinygltf::Model model;
   std::string error, warning;
   const std::string base = std::filesystem::absolute(path).parent_path().string();

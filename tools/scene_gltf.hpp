@@ -21,7 +21,18 @@
 //   thickness, attenuationColor ^ (thicknessFactor / attenuationDistance), in the shadow and the compose.
 //   Roughness r gives the Phong exponent 2 / r^4 - 2 (within 1-255, the Blinn-Phong match of GGX's width)
 //   and metallic m the specular intensity 0.04 + 0.96 m times (1 - r); metals keep their base colour as
-//   diffuse, since dstrans has no environment light. Textures are not sampled yet: the factors alone.
+//   diffuse, since dstrans has no environment light.
+// - baseColorTexture: its image (PNG or JPEG, decoded only if a drawn material samples it, held to the
+//   budget) becomes a scene texture, read at the primitive's TEXCOORD_<texCoord> (floats or normalized
+//   unsigned integers; required where the material samples it), with its sampler's wrap modes. The
+//   texels multiply the base colour as they are stored (sRGB values, like every dstrans colour: no
+//   linear decoding); their alpha multiplies a BLEND material's, and a MASK material with a texture drops
+//   the fragments whose alpha is below alphaCutoff per texel. A BLEND material whose factors are opaque
+//   but whose texture has alpha is glass (alpha 254/255, what the G-buffer stores for any alpha that
+//   close to 1, times the texel's). Approximated: every texture is read trilinearly with mip levels
+//   whatever its sampler's filters, and resampled to the largest texture's size (at most 1024 a side)
+//   to share one array (material_textures.hpp); KHR_texture_transform, where not required, is ignored.
+//   Other textures (normal, metallic-roughness, occlusion, emissive, transmission) are not read.
 // - Cameras: the first perspective camera met walking the scene (its yfov, znear and zfar; an infinite zfar
 //   becomes 1000 znear), looking down its node's -Z with +Y up. Without one, a camera 45 degrees wide frames
 //   the scene's bounds from the front, above and right.

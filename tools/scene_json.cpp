@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include <dstrans/material_textures.hpp>
 #include <nlohmann/json.hpp>
 
 #include <sys/stat.h>
@@ -132,17 +133,21 @@ constexpr float big = 1e6f;
 struct cost {
   const scene_budget& budget;
   std::size_t vertices = 0, particles = 0, lights = 0;
-  void add(std::size_t v, std::size_t p, std::size_t l, const std::string& where) {
+  std::size_t texels = 0, array_bytes = 0;  // glTF assets' textures as read, and the array they make (material_textures.hpp)
+  void add(std::size_t v, std::size_t p, std::size_t l, const std::string& where, std::size_t texel_bytes = 0) {
     vertices += v;
     particles += p;
     lights += l;
+    texels += texel_bytes;
     const std::size_t bytes = used();
     if (bytes > budget.bytes)
       throw bad_field{where + ": the scene would take about " + mib(bytes) + " MiB by here (" + std::to_string(vertices) +
                       " vertices, " + std::to_string(particles) + " particles, " + std::to_string(lights) +
                       " lights), over the budget of " + mib(budget.bytes) + " MiB (--budget MIB raises it)"};
   }
-  std::size_t used() const { return vertices * bytes_per_vertex + particles * bytes_per_particle + lights * bytes_per_light; }
+  std::size_t used() const {
+    return vertices * bytes_per_vertex + particles * bytes_per_particle + lights * bytes_per_light + texels;
+  }
   std::size_t left() const { return budget.bytes - std::min(used(), budget.bytes); }
 };
 
@@ -226,7 +231,19 @@ void add_asset(reader& r, const std::string& scene_file, scene& s, cost& spent) 
   auto asset = load_gltf(file.string(), scene_budget{spent.left(), spent.budget.file_bytes});
   if (!asset) throw bad_field{r.field("gltf") + ": " + asset.error()};
   const auto first = std::uint32_t(s.materials.size());
+  const int first_texture = int(s.textures.size());
+  for (material& m : asset->materials)
+    if (m.texture >= 0) m.texture += first_texture;
   s.materials.insert(s.materials.end(), asset->materials.begin(), asset->materials.end());
+  std::size_t texel_bytes = 0;
+  for (texture& t : asset->textures) {
+    texel_bytes += t.rgba.size();
+    s.textures.push_back(std::move(t));
+  }
+  // The array of every texture of the scene so far, resampled to the largest, grows with each asset's.
+  const std::size_t array_bytes = s.textures.empty() ? 0 : texture_array_bytes(s);
+  spent.add(0, 0, 0, r.field("gltf"), texel_bytes + array_bytes - spent.array_bytes);
+  spent.array_bytes = array_bytes;
   for (object& o : asset->objects) {
     spent.add(o.geometry.positions.size(), 0, 0, r.field("gltf"));
     o.material += first;
@@ -430,7 +447,10 @@ std::size_t scene_bytes(const scene& s) {
   std::size_t vertices = 0, particles = 0;
   for (const object& o : s.objects) vertices += o.geometry.positions.size();
   for (const particle_system& p : s.particles) particles += std::size_t(std::max(p.count, 0));
-  return vertices * bytes_per_vertex + particles * bytes_per_particle + s.lights.size() * bytes_per_light;
+  std::size_t texels = 0;
+  for (const texture& t : s.textures) texels += t.rgba.size();
+  if (!s.textures.empty()) texels += texture_array_bytes(s);
+  return vertices * bytes_per_vertex + particles * bytes_per_particle + s.lights.size() * bytes_per_light + texels;
 }
 
 result<std::vector<post_effect>> load_post_chain(const std::string& path) {

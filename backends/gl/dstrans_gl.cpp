@@ -224,6 +224,12 @@ debug_group::debug_group(const std::string& name) {
 }
 debug_group::~debug_group() { glPopDebugGroup(); }
 
+namespace {
+// How texel uploads read client memory, besides the alignment.
+constexpr GLenum unpack_layout[5] = {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_IMAGE_HEIGHT,
+                                     GL_UNPACK_SKIP_IMAGES};
+}  // namespace
+
 state_guard::state_guard(const std::vector<GLuint>& storage_blocks) {
   glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fb_);
@@ -246,6 +252,7 @@ state_guard::state_guard(const std::vector<GLuint>& storage_blocks) {
   glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpack_alignment_);
   glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer_);
   glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack_buffer_);
+  for (int k = 0; k < 5; ++k) glGetIntegerv(unpack_layout[k], &unpack_layout_[k]);
   glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniform_buffer_);
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_buffer_);
   glGetVertexAttribIuiv(3, GL_CURRENT_VERTEX_ATTRIB, light_index_);
@@ -314,6 +321,7 @@ state_guard::~state_guard() {
   glVertexAttribI4uiv(3, light_index_);
   glPixelStorei(GL_PACK_ALIGNMENT, pack_alignment_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, unpack_alignment_);
+  for (int k = 0; k < 5; ++k) glPixelStorei(unpack_layout[k], unpack_layout_[k]);
   for (const texture_unit& u : textures_) {
     glActiveTexture(GL_TEXTURE0 + u.unit);
     glBindTexture(GL_TEXTURE_2D, GLuint(u.texture_2d));

@@ -142,6 +142,7 @@ class state_guard {
       blend_dst_rgb_, blend_src_a_, blend_dst_a_, blend_eq_rgb_, blend_eq_a_, cull_face_, front_face_,
       vertex_array_, active_texture_, pack_alignment_, unpack_alignment_, pack_buffer_, unpack_buffer_,
       uniform_buffer_, storage_buffer_;
+  GLint unpack_layout_[5];  // GL_UNPACK_ROW_LENGTH, SKIP_ROWS, SKIP_PIXELS, IMAGE_HEIGHT, SKIP_IMAGES
   GLuint light_index_[4];
   GLboolean depth_test_, depth_mask_, blend_, cull_, scissor_, depth_clamp_;
   std::vector<texture_unit> textures_;

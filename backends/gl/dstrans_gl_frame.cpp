@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include <dstrans/frame/passes.hpp>
+#include <dstrans/material_textures.hpp>
 #include <dstrans/particles.hpp>
 
 namespace dstrans::gl {
@@ -16,6 +17,8 @@ using namespace dstrans::render;
 // The vertex attribute that carries a light pass's light index: instanced in the renderer's own vertex
 // arrays, the generic value while the engine draws.
 constexpr GLuint light_index_attribute = 3;
+// The engine's texture coordinates (vec2), where the scene samples textures.
+constexpr GLuint texture_coordinates_attribute = 4;
 
 template <class T>
 GLuint make_buffer(const std::vector<T>& data, const std::string& name) {
@@ -25,6 +28,33 @@ GLuint make_buffer(const std::vector<T>& data, const std::string& name) {
                        GL_DYNAMIC_STORAGE_BIT);
   label(GL_BUFFER, b, name);
   return b;
+}
+
+// The material textures (material_textures.hpp) as a 2D array texture with its mip levels, read repeating
+// and trilinearly (the shader wraps each texture as it says); a failure past the device's array limits.
+result<GLuint> make_texture_array(const texture_array& a) {
+  GLint layers = 0, largest = 0;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
+  if (a.layers > layers || a.width > largest || a.height > largest)
+    return failure{"the scene's " + std::to_string(a.layers) + " textures of " + std::to_string(a.width) + " x " + std::to_string(a.height) +
+                   " texels exceed the device's array textures (" + std::to_string(layers) + " layers of " + std::to_string(largest) + ")"};
+  GLuint t = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
+  glTextureStorage3D(t, GLsizei(a.levels.size()), GL_RGBA8, a.width, a.height, a.layers);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_IMAGES}) glPixelStorei(p, 0);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  for (std::size_t l = 0; l < a.levels.size(); ++l) {
+    const glm::ivec2 size = a.level_size(int(l));
+    glTextureSubImage3D(t, GLint(l), 0, 0, 0, size.x, size.y, a.layers, GL_RGBA, GL_UNSIGNED_BYTE, a.levels[l].data());
+  }
+  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  label(GL_TEXTURE, t, "material textures");
+  return t;
 }
 
 // Binds the light-index attribute of vertex array `vao` to `indices`, one a instance.
@@ -79,7 +109,7 @@ struct renderer::impl {
   GLuint gbuffer_progs[2] = {}, light_progs[3][2] = {}, forward_light_progs[3] = {}, compose_prog = 0, ambient_prog = 0,
          shadow_prog = 0, capture_prog = 0, resolve_prog = 0, bake_prog = 0, bake_shadowed_prog = 0, particle_prog = 0;
   std::vector<GLuint> post_progs, post_blocks;
-  GLuint fullscreen_vao = 0, frame_ubo = 0, shadow_ubo = 0, materials = 0, lights = 0;
+  GLuint fullscreen_vao = 0, frame_ubo = 0, shadow_ubo = 0, materials = 0, lights = 0, material_textures = 0;
   std::vector<std::vector<frame_block>> light_frames;  // each light's shadow-map views
   gl::targets shadow_map;
   int pictured_light = -1;  // the light whose shadow colour frame_targets::shadow_picture shows
@@ -149,13 +179,13 @@ result<bool> renderer::impl::make_programs() {
   };
   std::vector<result<bool>> made;
   if (plan.forward) {
-    made.push_back(keep(ambient_prog, program(forward_pass(sh, forward_stage::ambient, plan.forward_depth, shadow_mode::off), "forward ambient pass")));
+    made.push_back(keep(ambient_prog, program(forward_pass(sh, forward_stage::ambient, plan.forward_depth, shadow_mode::off, plan.on), "forward ambient pass")));
     for (shadow_mode k : all_lookups)
       if (plan.uses(k))
         made.push_back(keep(forward_light_progs[int(k)],
-                            program(forward_pass(sh, forward_stage::light, plan.forward_depth, k, o),
+                            program(forward_pass(sh, forward_stage::light, plan.forward_depth, k, plan.on, o),
                                     std::string("forward light pass") + lookup_label(k))));
-    made.push_back(keep(compose_prog, program(forward_pass(sh, forward_stage::blend, plan.forward_depth, shadow_mode::off), "forward blend pass")));
+    made.push_back(keep(compose_prog, program(forward_pass(sh, forward_stage::blend, plan.forward_depth, shadow_mode::off, plan.on), "forward blend pass")));
   } else {
     for (int k = 0; k < plan.layers; ++k)
       made.push_back(keep(gbuffer_progs[k], program(gbuffer_pass(sh, plan.peeling ? (k ? layer::second : layer::first) : layer::interlaced, plan.on, o),
@@ -209,6 +239,12 @@ result<bool> renderer::impl::make_fixed() {
   frame_ubo = make_buffer(std::vector<frame_block>{camera_frame(description, o)}, "camera frame");
   shadow_ubo = make_buffer(std::vector<frame_block>{camera_frame(description, o)}, "light frame");
   materials = make_buffer(material_blocks(description), "materials");
+  if (plan.on.has(effect::textures)) {
+    auto t = make_texture_array(texture_array_of(description));
+    if (!t) return failure{t.error()};
+    material_textures = *t;
+    textures.push_back(material_textures);
+  }
   const std::vector<light_block> light_data = light_blocks(description);
   lights = make_buffer(light_data, "lights");
   buffers.insert(buffers.end(), {frame_ubo, shadow_ubo, materials, lights});
@@ -568,6 +604,7 @@ result<std::unique_ptr<renderer>> renderer::create(const scene& description, con
     if (auto ok = ((*p).*step)(); !ok) return failure{ok.error()};
   p->shaders = nullptr;  // every program is made: the frame reads no shader
   for (object& ob : p->description.objects) ob.geometry = {};
+  p->description.textures = {};  // uploaded: the frame reads none
   return std::unique_ptr<renderer>(new renderer(std::move(p)));
 }
 
@@ -605,6 +642,7 @@ void renderer::render(const camera& view, const draw_geometry& draw) {
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::materials), r.materials);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::lights), r.lights);
+  if (r.material_textures) glBindTextureUnit(GLuint(binding(slot::material_textures)), r.material_textures);
   if (r.smoke.on) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::particle_regions), r.particle_regions);
   glDisable(GL_SCISSOR_TEST);
   glFrontFace(GL_CCW);
@@ -648,6 +686,7 @@ scene_geometry::scene_geometry(const scene& s) {
   buffers_[1] = make_buffer(m.normals, "scene normals");
   buffers_[2] = make_buffer(m.materials, "scene materials");
   buffers_[3] = make_buffer(m.indices, "scene indices");
+  if (!m.uvs.empty()) buffers_[4] = make_buffer(m.uvs, "scene texture coordinates");
   glCreateVertexArrays(1, &vertex_array_);
   label(GL_VERTEX_ARRAY, vertex_array_, "scene");
   glVertexArrayVertexBuffer(vertex_array_, 0, buffers_[0], 0, sizeof(glm::vec3));
@@ -660,12 +699,18 @@ scene_geometry::scene_geometry(const scene& s) {
   glVertexArrayAttribFormat(vertex_array_, 0, 3, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribFormat(vertex_array_, 1, 3, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribIFormat(vertex_array_, 2, 1, GL_UNSIGNED_INT, 0);
+  if (buffers_[4]) {
+    glVertexArrayVertexBuffer(vertex_array_, texture_coordinates_attribute, buffers_[4], 0, sizeof(glm::vec2));
+    glEnableVertexArrayAttrib(vertex_array_, texture_coordinates_attribute);
+    glVertexArrayAttribBinding(vertex_array_, texture_coordinates_attribute, texture_coordinates_attribute);
+    glVertexArrayAttribFormat(vertex_array_, texture_coordinates_attribute, 2, GL_FLOAT, GL_FALSE, 0);
+  }
   glVertexArrayElementBuffer(vertex_array_, buffers_[3]);
 }
 
 scene_geometry::~scene_geometry() {
   glDeleteVertexArrays(1, &vertex_array_);
-  glDeleteBuffers(4, buffers_);
+  glDeleteBuffers(5, buffers_);
 }
 
 void scene_geometry::operator()(const scheduled_pass& pass) const {

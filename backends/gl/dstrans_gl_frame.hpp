@@ -14,7 +14,9 @@
 // The geometry a pass draws (pass.draws) is either every surface but hair, the hair alone, or both. Its
 // vertices give the world-space position at attribute 0 (vec3), the normal (hair: the tangent) at 1 (vec3)
 // and the index of its material in the description's materials at 2 (uint); attribute 3 is the
-// renderer's (leave it disabled in the engine's vertex arrays).
+// renderer's (leave it disabled in the engine's vertex arrays). Where the description's materials sample
+// textures (effect::textures), attribute 4 gives the texture coordinates (vec2; disabled, they read the
+// generic value, (0, 0) unless the engine set another).
 #pragma once
 
 #include <deque>
@@ -83,7 +85,7 @@ class renderer {
 };
 
 // A dstrans::scene's meshes as the engine geometry of `renderer`: one vertex array of world-space
-// vertices, hair last (dstrans::flatten).
+// vertices, hair last (dstrans::flatten), with texture coordinates where some shape has them.
 class scene_geometry {
  public:
   explicit scene_geometry(const scene& s);
@@ -94,7 +96,7 @@ class scene_geometry {
   void operator()(const scheduled_pass& pass) const;
 
  private:
-  GLuint vertex_array_ = 0, buffers_[4] = {0, 0, 0, 0};
+  GLuint vertex_array_ = 0, buffers_[5] = {0, 0, 0, 0, 0};  // positions, normals, materials, indices, texture coordinates
   std::size_t hair_first_ = 0, index_count_ = 0;
 };
 

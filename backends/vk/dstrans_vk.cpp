@@ -24,7 +24,7 @@ VkImageMemoryBarrier image_barrier(VkImage img, VkImageLayout from, VkImageLayou
   b.newLayout = to;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = img;
-  b.subresourceRange = {aspect, 0, 1, 0, 1};
+  b.subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
   return b;
 }
 
@@ -195,7 +195,7 @@ result<std::uint32_t> device::memory_type(std::uint32_t bits, VkMemoryPropertyFl
 }
 
 result<image> device::make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
-                                 const std::string& label, VkImageViewType view_type, int depth_or_layers) {
+                                 const std::string& label, VkImageViewType view_type, int depth_or_layers, int levels) {
   image img;
   img.format = fmt;
   const bool volume = view_type == VK_IMAGE_VIEW_TYPE_3D, layered = view_type == VK_IMAGE_VIEW_TYPE_2D_ARRAY;
@@ -203,7 +203,7 @@ result<image> device::make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageA
   ci.imageType = volume ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
   ci.format = fmt;
   ci.extent = {std::uint32_t(w), std::uint32_t(h), volume ? std::uint32_t(depth_or_layers) : 1u};
-  ci.mipLevels = 1;
+  ci.mipLevels = std::uint32_t(levels);
   ci.arrayLayers = layered ? std::uint32_t(depth_or_layers) : 1u;
   ci.samples = VK_SAMPLE_COUNT_1_BIT;
   ci.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -224,7 +224,7 @@ result<image> device::make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageA
   vi.image = img.handle;
   vi.viewType = view_type;
   vi.format = fmt;
-  vi.subresourceRange = {aspect, 0, 1, 0, ci.arrayLayers};
+  vi.subresourceRange = {aspect, 0, ci.mipLevels, 0, ci.arrayLayers};
   vkCreateImageView(ctx_.device, &vi, ctx_.allocator, &img.view);
   name(VK_OBJECT_TYPE_IMAGE, std::uint64_t(img.handle), label);
   name(VK_OBJECT_TYPE_IMAGE_VIEW, std::uint64_t(img.view), label);
@@ -322,12 +322,55 @@ result<image> device::make_sampled_image(VkFormat fmt, VkImageViewType view_type
   auto img = make_image(fmt, use, VK_IMAGE_ASPECT_COLOR_BIT, width, height, label, view_type, depth_or_layers);
   if (!img) return img;
   submit([&](VkCommandBuffer cmd) {
-    VkImageMemoryBarrier b = image_barrier(img->handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
-                                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
-    b.subresourceRange.layerCount = VK_REMAINING_ARRAY_LAYERS;
+    const VkImageMemoryBarrier b = image_barrier(img->handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+                                                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
                          nullptr, 1, &b);
   });
+  return img;
+}
+
+result<image> device::make_texture_array(const texture_array& a, const std::string& label) {
+  const VkFormat fmt = VK_FORMAT_R8G8B8A8_UNORM;
+  const VkImageUsageFlags use = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  VkImageFormatProperties limits{};
+  if (vkGetPhysicalDeviceImageFormatProperties(ctx_.physical_device, fmt, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, use, 0, &limits) != VK_SUCCESS ||
+      std::uint32_t(a.layers) > limits.maxArrayLayers || std::uint32_t(a.width) > limits.maxExtent.width ||
+      std::uint32_t(a.height) > limits.maxExtent.height || std::uint32_t(a.levels.size()) > limits.maxMipLevels)
+    return failure{label + ": " + std::to_string(a.layers) + " layers of " + std::to_string(a.width) + " x " + std::to_string(a.height) +
+                   " RGBA8 texels exceed the device's array images (" + std::to_string(limits.maxArrayLayers) + " layers of " +
+                   std::to_string(limits.maxExtent.width) + ")"};
+  std::size_t total = 0;
+  for (const std::vector<std::uint8_t>& level : a.levels) total += level.size();
+  auto staging = make_buffer(VkDeviceSize(total), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, label + " upload");
+  if (!staging) return failure{staging.error()};
+  auto img = make_image(fmt, use, VK_IMAGE_ASPECT_COLOR_BIT, a.width, a.height, label, VK_IMAGE_VIEW_TYPE_2D_ARRAY, a.layers, int(a.levels.size()));
+  if (!img) {
+    destroy(*staging);
+    return img;
+  }
+  std::vector<VkBufferImageCopy> copies;
+  VkDeviceSize offset = 0;
+  for (std::size_t l = 0; l < a.levels.size(); ++l) {
+    std::memcpy(static_cast<std::uint8_t*>(staging->mapped) + offset, a.levels[l].data(), a.levels[l].size());
+    const glm::ivec2 size = a.level_size(int(l));
+    VkBufferImageCopy c{};
+    c.bufferOffset = offset;
+    c.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, std::uint32_t(l), 0, std::uint32_t(a.layers)};
+    c.imageExtent = {std::uint32_t(size.x), std::uint32_t(size.y), 1u};
+    copies.push_back(c);
+    offset += VkDeviceSize(a.levels[l].size());
+  }
+  submit([&](VkCommandBuffer cmd) {
+    const VkImageMemoryBarrier into = image_barrier(img->handle, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+                                                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &into);
+    vkCmdCopyBufferToImage(cmd, staging->handle, img->handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, std::uint32_t(copies.size()), copies.data());
+    const VkImageMemoryBarrier after = image_barrier(img->handle, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                                                     VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr, 1, &after);
+  });
+  destroy(*staging);
   return img;
 }
 

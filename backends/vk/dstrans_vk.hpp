@@ -27,6 +27,7 @@
 #include <dstrans/formula.hpp>
 #include <dstrans/glsl.hpp>
 #include <dstrans/layout.hpp>
+#include <dstrans/material_textures.hpp>
 #include <dstrans/result.hpp>
 #include <dstrans_spirv.hpp>
 
@@ -135,6 +136,9 @@ class device {
   // failure if the device cannot.
   result<image> make_sampled_image(VkFormat fmt, VkImageViewType view_type, int width, int height, int depth_or_layers,
                                    const std::string& label, bool storage = false);
+  // The material textures `a` as an RGBA8 2D array image with its mip levels, filled, in GENERAL layout; a
+  // failure past the device's limits for such images.
+  result<image> make_texture_array(const texture_array& a, const std::string& label);
   // The 32-bit texels of a storage image such as an R32_UINT one, row by row from the top.
   result<std::vector<std::uint32_t>> read_words(const image& img, int width, int height);
   // The bytes of a 3D image of `size` texels, `bytes_per_texel` each, x fastest, from layout `current`.
@@ -203,7 +207,7 @@ class device {
                                                int depth = 1);
   result<image> make_image(VkFormat fmt, VkImageUsageFlags usage, VkImageAspectFlags aspect, int w, int h,
                            const std::string& label, VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_2D,
-                           int depth_or_layers = 1);
+                           int depth_or_layers = 1, int levels = 1);
   // A pipeline with its layouts made from what `stages` declare, and no VkPipeline yet.
   result<pipeline> pipeline_layout(const std::vector<const shader*>& stages, const std::string& label);
 

@@ -16,6 +16,22 @@ namespace {
 using namespace dstrans::render;
 
 constexpr std::uint32_t light_index_binding = 3;  // the renderer's instance-rate light index (location 3)
+constexpr std::uint32_t texture_coordinates_location = 4;  // the engine's texture coordinates (vec2), with effect::textures
+constexpr std::uint32_t texture_coordinates_binding = 4;   // vertex_input::streams(true)'s
+
+// `st` without the texture coordinates' attribute, for a pipeline whose vertex shader does not read them.
+pipeline_state without_texture_coordinates(pipeline_state st) {
+  st.attributes.erase(std::remove_if(st.attributes.begin(), st.attributes.end(),
+                                     [](const VkVertexInputAttributeDescription& a) { return a.location == texture_coordinates_location; }),
+                      st.attributes.end());
+  return st;
+}
+
+// Whether a pass of `step` calls the engine to draw its geometry.
+bool draws_geometry(pass_step step) {
+  return step == pass_step::gbuffer || step == pass_step::shadow || step == pass_step::ambient || step == pass_step::forward_light ||
+         step == pass_step::capture;
+}
 
 struct compiled {
   const shader* vertex = nullptr;
@@ -121,13 +137,17 @@ result<buffer> filled(device& dev, const std::vector<T>& data, VkBufferUsageFlag
 
 }  // namespace
 
-vertex_input vertex_input::streams() {
+vertex_input vertex_input::streams(bool texture_coordinates) {
   vertex_input v;
   v.bindings = {{0, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
                 {1, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
                 {2, sizeof(std::uint32_t), VK_VERTEX_INPUT_RATE_VERTEX}};
   v.attributes = {attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT), attribute(1, 1, VK_FORMAT_R32G32B32_SFLOAT),
                   attribute(2, 2, VK_FORMAT_R32_UINT)};
+  if (texture_coordinates) {
+    v.bindings.push_back({texture_coordinates_binding, sizeof(glm::vec2), VK_VERTEX_INPUT_RATE_VERTEX});
+    v.attributes.push_back(attribute(texture_coordinates_location, texture_coordinates_binding, VK_FORMAT_R32G32_SFLOAT));
+  }
   return v;
 }
 
@@ -156,7 +176,12 @@ struct renderer::impl {
   vk::targets shadow_map;
   int pictured_light = -1;
   image shadow_layers[2];
-  VkSampler sampler = VK_NULL_HANDLE, linear_sampler = VK_NULL_HANDLE;
+  image material_textures;  // effect::textures: the scene's textures as one array
+  // The sampler of the material textures; the binding of the renderer's (0, 0) texture coordinates for an
+  // engine whose vertices have none (-1: they have them, or nothing samples textures).
+  VkSampler sampler = VK_NULL_HANDLE, linear_sampler = VK_NULL_HANDLE, texture_sampler = VK_NULL_HANDLE;
+  int zero_uv_binding = -1;
+  buffer zero_uv;
 
   frame_targets out;
   vk::targets tail, lit_colour_only;  // the last: a view of the forward target's colour and depth (owns nothing)
@@ -231,6 +256,8 @@ renderer::impl::~impl() {
   if (queries) vkDestroyQueryPool(d, queries, a);
   if (sampler) vkDestroySampler(d, sampler, a);
   if (linear_sampler) vkDestroySampler(d, linear_sampler, a);
+  if (texture_sampler) vkDestroySampler(d, texture_sampler, a);
+  dev.destroy(material_textures);
   dev.destroy(shadow_map);
   dev.destroy(out.volume_atlas);
   for (image& i : shadow_layers) dev.destroy(i);
@@ -267,6 +294,12 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
   pipeline_state scene_state;
   scene_state.bindings = vertices.bindings;
   scene_state.attributes = vertices.attributes;
+  if (zero_uv_binding >= 0) {
+    // Every vertex reads the one (0, 0) of the renderer's buffer.
+    scene_state.bindings.push_back({std::uint32_t(zero_uv_binding), 0, VK_VERTEX_INPUT_RATE_VERTEX});
+    scene_state.attributes.push_back(attribute(texture_coordinates_location, std::uint32_t(zero_uv_binding), VK_FORMAT_R32G32_SFLOAT));
+  }
+  if (!plan.on.has(effect::textures)) scene_state = without_texture_coordinates(scene_state);
   scene_state.depth_attachment = scene_state.depth_test = scene_state.depth_write = true;
   // The forward passes read the light's index per instance, as the light volumes do.
   pipeline_state forward_state = scene_state;
@@ -295,7 +328,7 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
                               std::string("light pass") + lookup_label(k) + (vol ? " volume" : " fullscreen"), st));
     }
   if (plan.forward) {
-    made.push_back(graphics(ambient, forward_pass(sh, forward_stage::ambient, plan.forward_depth, shadow_mode::off), lit_formats,
+    made.push_back(graphics(ambient, forward_pass(sh, forward_stage::ambient, plan.forward_depth, shadow_mode::off, plan.on), lit_formats,
                             "forward ambient pass", forward_state));
     pipeline_state st = forward_state;
     st.depth_write = false;
@@ -303,14 +336,14 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
     st.additive = true;
     for (shadow_mode k : all_lookups)
       if (plan.uses(k))
-        made.push_back(graphics(forward_light[int(k)], forward_pass(sh, forward_stage::light, plan.forward_depth, k, o),
+        made.push_back(graphics(forward_light[int(k)], forward_pass(sh, forward_stage::light, plan.forward_depth, k, plan.on, o),
                                 {lit_formats[0]}, std::string("forward light pass") + lookup_label(k), st));
   }
-  made.push_back(graphics(compose, plan.forward ? forward_pass(sh, forward_stage::blend, plan.forward_depth, shadow_mode::off)
+  made.push_back(graphics(compose, plan.forward ? forward_pass(sh, forward_stage::blend, plan.forward_depth, shadow_mode::off, plan.on)
                                                 : compose_pass(sh, plan.on, o),
                           final_formats, plan.forward ? "forward blend pass" : "compose pass"));
   if (plan.on.has(effect::many_layers) && !plan.forward) {
-    pipeline_state st = scene_state;
+    pipeline_state st = without_texture_coordinates(scene_state);  // hair takes its factors alone
     st.additive = true;
     made.push_back(graphics(capture, capture_pass(sh, mode, o), formats_of(kbuffer_tail_targets()), "capture pass", st));
     pipeline_state rs;
@@ -362,6 +395,7 @@ result<bool> renderer::impl::make_fixed() {
   made.emplace_back(&cone_vertices, filled(dev, cone.positions, vertex_use, "spot light volume"));
   made.emplace_back(&cone_indices, filled(dev, cone.indices, index_use, "spot light volume"));
   made.emplace_back(&materials, filled(dev, material_blocks(description), storage_use, "materials"));
+  if (zero_uv_binding >= 0) made.emplace_back(&zero_uv, filled(dev, std::vector<glm::vec2>{glm::vec2(0.0f)}, vertex_use, "zero texture coordinates"));
   made.emplace_back(&lights, filled(dev, light_data, storage_use, "lights"));
   camera_blocks.resize(std::size_t(slots));
   for (buffer& b : camera_blocks) made.emplace_back(&b, filled(dev, std::vector<frame_block>{camera_frame(description, o)}, uniform_use, "camera frame"));
@@ -402,6 +436,16 @@ result<bool> renderer::impl::make_fixed() {
   vkCreateSampler(dev.ctx().device, &sci, dev.ctx().allocator, &sampler);
   sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;  // the volume atlas is read trilinearly
   vkCreateSampler(dev.ctx().device, &sci, dev.ctx().allocator, &linear_sampler);
+  if (plan.on.has(effect::textures)) {
+    // Repeating and trilinear: the shader wraps each texture as it says (dst_wrap).
+    sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    sci.maxLod = VK_LOD_CLAMP_NONE;
+    vkCreateSampler(dev.ctx().device, &sci, dev.ctx().allocator, &texture_sampler);
+    auto t = dev.make_texture_array(texture_array_of(description), "material textures");
+    if (!t) return failure{t.error()};
+    material_textures = *t;
+  }
   // Two timestamps a pass and two for the whole frame, a frame in flight each.
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(dev.ctx().physical_device, &props);
@@ -569,6 +613,10 @@ bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const
                {binding(slot::lights), lights.handle}};
   if (pass.step == pass_step::shadow)
     b.buffers[binding(slot::frame)] = light_blocks_by_light.at(pass.light).at(std::size_t(pass.index)).handle;
+  if (material_textures.view) {
+    b.images[binding(slot::material_textures)] = &material_textures;
+    b.samplers[binding(slot::material_textures)] = texture_sampler;
+  }
   for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) b.images[binding(slot::shadow_map) + int(t)] = &shadow_map.colors[t];
   // A G-buffer's images at `first` and up (the compact layout's depth attachment at its depth slot).
   auto add_gbuffer = [&](int first, const vk::targets& g) {
@@ -779,7 +827,7 @@ void renderer::impl::settle(VkCommandBuffer cmd, access from, access to, const s
     b.newLayout = u.layout;
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = u.handle;
-    b.subresourceRange = {u.aspect, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
+    b.subresourceRange = {u.aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
     moves.push_back(b);
     from.stages |= st.since.stages;
     to.stages |= u.at.stages;
@@ -880,6 +928,7 @@ void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, VkDesc
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.handle);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.layout, 0, 1, &set, 0, nullptr);
   }
+  if (zero_uv_binding >= 0 && draws_geometry(pass.step)) vkCmdBindVertexBuffers(cmd, std::uint32_t(zero_uv_binding), 1, &zero_uv.handle, &zero);
   switch (pass.step) {
     case pass_step::ambient:
       vkCmdBindVertexBuffers(cmd, light_index_binding, 1, &light_index.handle, &zero);
@@ -960,6 +1009,13 @@ result<std::unique_ptr<renderer>> renderer::create(device& dev, const scene& des
   p->schedule = schedule_of(description, p->plan, o);
   p->vertices = vertices;
   p->slots = frames_in_flight;
+  if (p->plan.on.has(effect::textures)) {
+    bool coordinates = false;
+    std::uint32_t last = light_index_binding;
+    for (const VkVertexInputAttributeDescription& a : vertices.attributes) coordinates = coordinates || a.location == texture_coordinates_location;
+    for (const VkVertexInputBindingDescription& b : vertices.bindings) last = std::max(last, b.binding);
+    if (!coordinates) p->zero_uv_binding = int(last + 1);
+  }
   const std::vector<format> final_formats{final_target_desc(o.float_targets).fmt};
   if (auto ok = p->make_pipelines(shaders, formats_of(gbuffer_targets(o.layout)), formats_of(light_targets(o)),
                                   formats_of(forward_targets(p->plan.forward_depth, o.float_targets)), final_formats);
@@ -968,6 +1024,7 @@ result<std::unique_ptr<renderer>> renderer::create(device& dev, const scene& des
   if (auto ok = p->make_fixed(); !ok) return failure{ok.error()};
   if (auto ok = p->make_sized(); !ok) return failure{ok.error()};
   for (object& ob : p->description.objects) ob.geometry = {};
+  p->description.textures = {};  // uploaded: the frame reads none
   return std::unique_ptr<renderer>(new renderer(std::move(p)));
 }
 
@@ -1056,13 +1113,16 @@ result<std::unique_ptr<scene_geometry>> scene_geometry::create(device& dev, cons
   const VkBufferUsageFlags vertex_use = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
   result<buffer> made[] = {filled(dev, m.positions, vertex_use, "scene positions"), filled(dev, m.normals, vertex_use, "scene normals"),
                            filled(dev, m.materials, vertex_use, "scene materials"),
-                           filled(dev, m.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene indices")};
-  for (std::size_t k = 0; k < 4; ++k) {
+                           filled(dev, m.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene indices"),
+                           m.uvs.empty() ? result<buffer>(buffer{}) : filled(dev, m.uvs, vertex_use, "scene texture coordinates")};
+  for (std::size_t k = 0; k < 5; ++k) {
     if (!made[k]) return failure{made[k].error()};
     g->buffers_[k] = *made[k];
   }
   return g;
 }
+
+vertex_input scene_geometry::input() const { return vertex_input::streams(buffers_[4].handle != VK_NULL_HANDLE); }
 
 scene_geometry::~scene_geometry() {
   for (buffer& b : buffers_) dev_.destroy(b);
@@ -1074,6 +1134,7 @@ void scene_geometry::operator()(VkCommandBuffer cmd, const scheduled_pass& pass)
   const VkBuffer streams[] = {buffers_[0].handle, buffers_[1].handle, buffers_[2].handle};
   const VkDeviceSize offsets[] = {0, 0, 0};
   vkCmdBindVertexBuffers(cmd, 0, 3, streams, offsets);
+  if (buffers_[4].handle) vkCmdBindVertexBuffers(cmd, texture_coordinates_binding, 1, &buffers_[4].handle, offsets);
   vkCmdBindIndexBuffer(cmd, buffers_[3].handle, 0, VK_INDEX_TYPE_UINT32);
   vkCmdDrawIndexed(cmd, std::uint32_t(run.count), 1, std::uint32_t(run.first), 0, 0);
 }

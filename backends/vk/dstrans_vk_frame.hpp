@@ -32,7 +32,10 @@
 // The geometry a pass draws (pass.draws) is every surface but hair, the hair alone, or both, at vertex
 // bindings and attributes `vertex_input` (by default three streams: binding 0 the world-space position
 // (vec3) at location 0, binding 1 the normal (hair: the tangent, vec3) at 1, binding 2 the material index
-// (uint) at 2). Binding 3 is the renderer's (a light pass's light index). Draw with firstInstance 0.
+// (uint) at 2). Binding 3 is the renderer's (a light pass's light index). Draw with firstInstance 0. Where
+// the description's materials sample textures (effect::textures), location 4 takes the texture
+// coordinates (vec2; streams(true) reads them from binding 4); a layout without location 4 reads (0, 0)
+// from a binding of the renderer's own, after the engine's last.
 #pragma once
 
 #include <functional>
@@ -53,12 +56,13 @@ namespace dstrans::vk {
 // The engine's geometry: called in every geometry pass of the schedule with the command buffer and the pass.
 using draw_geometry = std::function<void(VkCommandBuffer cmd, const scheduled_pass& pass)>;
 
-// How the engine's vertices reach locations 0 (position), 1 (normal) and 2 (material).
+// How the engine's vertices reach locations 0 (position), 1 (normal), 2 (material) and 4 (texture coordinates).
 struct vertex_input {
   std::vector<VkVertexInputBindingDescription> bindings;
   std::vector<VkVertexInputAttributeDescription> attributes;
-  // Three streams: position, normal and material index at bindings 0, 1, 2.
-  static vertex_input streams();
+  // Three streams: position, normal and material index at bindings 0, 1, 2; with `texture_coordinates`
+  // a fourth at binding 4.
+  static vertex_input streams(bool texture_coordinates = false);
 };
 
 // The frame's targets, for reading back or showing; empty where the frame has none.
@@ -107,7 +111,8 @@ class renderer {
 };
 
 // A dstrans::scene's meshes as the engine geometry of `renderer`: world-space vertex streams, hair last
-// (dstrans::flatten), at vertex_input::streams()'s bindings.
+// (dstrans::flatten), at vertex_input::streams()'s bindings, with texture coordinates where some shape has
+// them (input() says which).
 class scene_geometry {
  public:
   static result<std::unique_ptr<scene_geometry>> create(device& dev, const scene& s);
@@ -116,11 +121,13 @@ class scene_geometry {
   scene_geometry& operator=(const scene_geometry&) = delete;
   // Binds the streams and draws what `pass` asks for.
   void operator()(VkCommandBuffer cmd, const scheduled_pass& pass) const;
+  // The vertex input of its streams, for renderer::create.
+  vertex_input input() const;
 
  private:
   explicit scene_geometry(device& dev) : dev_(dev) {}
   device& dev_;
-  buffer buffers_[4];
+  buffer buffers_[5];  // positions, normals, materials, indices, texture coordinates (none without)
   std::size_t hair_first_ = 0, index_count_ = 0;
 };
 

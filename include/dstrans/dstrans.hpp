@@ -24,6 +24,7 @@
 #include "light_basis.hpp"
 #include "light_mesh.hpp"
 #include "light_volume.hpp"
+#include "material_textures.hpp"
 #include "particles.hpp"
 #include "pass_shaders.hpp"
 #include "phong.hpp"

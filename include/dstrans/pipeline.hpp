@@ -73,6 +73,7 @@ struct pipeline {
   static constexpr bool has_shadow_colour = set.has(effect::transparent_shadows);
   static constexpr bool many_layers = set.has(effect::many_layers);
   static constexpr bool light_volumes = set.has(effect::light_volumes);
+  static constexpr bool textured = set.has(effect::textures);
   static constexpr int screen_bytes_per_pixel = G::bytes_per_pixel + thesis_light_buffer::bytes_per_pixel;
   static constexpr int shadow_bytes_per_texel = !has_shadows         ? 0
                                                 : has_shadow_colour ? thesis_shadow_map::bytes_per_pixel
@@ -111,12 +112,15 @@ struct pipeline {
     }
     std::vector<std::string> geometry;  // the G-buffer pass's switches
     if constexpr (interlaced) geometry.push_back(effect_switch(effect::transparency));
+    if constexpr (textured) geometry.push_back(effect_switch(effect::textures));
     p.passes.push_back({"gbuffer", {}, gbuffer, geometry});
     std::vector<std::string> lookup;
     if constexpr (has_shadows) {
       lookup.push_back(effect_switch(effect::shadows));
       if constexpr (has_shadow_colour) lookup.push_back(effect_switch(effect::transparent_shadows));
-      p.passes.push_back({"shadow", {}, shadow, lookup});
+      std::vector<std::string> occluders = lookup;
+      if constexpr (textured) occluders.push_back(effect_switch(effect::textures));
+      p.passes.push_back({"shadow", {}, shadow, occluders});
     }
     std::vector<std::string> light_reads = gbuffer;
     light_reads.insert(light_reads.end(), shadow.begin(), shadow.end());

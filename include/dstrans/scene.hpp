@@ -25,7 +25,20 @@ namespace dstrans {
 struct shape {
   std::vector<glm::vec3> positions, normals;
   std::vector<std::uint32_t> indices;
+  std::vector<glm::vec2> uvs;  // texture coordinates, one a vertex, or none ((0, 0) everywhere)
   std::size_t triangles() const { return indices.size() / 3; }
+};
+
+// How texture coordinates outside [0, 1] read a texture: it repeats, its edge texels stretch, or it
+// repeats mirrored.
+enum class wrap { repeat, clamp, mirror };
+
+// An RGBA8 image that materials sample, rows from the top (as PNG and glTF store them).
+struct texture {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;  // width x height x 4 bytes
+  wrap wrap_s = wrap::repeat, wrap_t = wrap::repeat;
+  bool valid() const { return width > 0 && height > 0 && rgba.size() == std::size_t(width) * std::size_t(height) * 4u; }
 };
 
 struct material {
@@ -37,7 +50,17 @@ struct material {
   // Many thin layers (hair, fur, dense smoke): drawn into per-pixel lists and resolved by S1's k-buffer
   // instead of the interlaced G-buffer; the shape's normals carry the strand tangents.
   bool hair = false;
-  bool transparent() const { return shader::dst_transparent(alpha) && !hair; }
+  // An index into scene::textures (-1: none): in the G-buffer, shadow and forward passes its texel at the
+  // fragment's texture coordinates multiplies the diffuse colour, and the alpha where the material is
+  // transparent or alpha-tested. Texels are taken as stored (dstrans's colours are display values, as its
+  // factors are): no sRGB decoding. Hair and particles take the factors alone.
+  int texture = -1;
+  // Above 0: alpha-tested (glTF's MASK): where the alpha (texel times factor) is below it, no fragment;
+  // elsewhere the surface is opaque.
+  float alpha_cutoff = 0.0f;
+  bool transparent() const { return shader::dst_transparent(alpha) && !(alpha_cutoff > 0.0f) && !hair; }
+  // Whether the material samples a texture or tests alpha (effect::textures).
+  bool textured() const { return !hair && (texture >= 0 || alpha_cutoff > 0.0f); }
 };
 
 enum class light_kind { directional, point, spot };
@@ -101,18 +124,29 @@ struct scene {
   glm::vec3 ambient{0.05f};
   std::vector<particle_system> particles;
   std::vector<post_effect> post;  // the post-processing chain after the frame (post.hpp), in order
+  std::vector<texture> textures;  // what materials sample (material::texture)
 };
 
-// A whole scene in world space, for one draw call: vertex i has positions[i], normals[i], materials[i].
-// Objects of hair materials come last, from index hair_first on, with tangents for normals.
+// A whole scene in world space, for one draw call: vertex i has positions[i], normals[i], materials[i]
+// and, where some shape has texture coordinates, uvs[i] ((0, 0) for shapes without). Objects of hair
+// materials come last, from index hair_first on, with tangents for normals.
 struct scene_mesh {
   std::vector<glm::vec3> positions, normals;
+  std::vector<glm::vec2> uvs;
   std::vector<std::uint32_t> materials, indices;
   std::size_t hair_first = 0;
 };
 
+// Whether some shape of `s` has texture coordinates (and flatten gives scene_mesh::uvs).
+inline bool has_texture_coordinates(const scene& s) {
+  for (const object& o : s.objects)
+    if (!o.geometry.uvs.empty()) return true;
+  return false;
+}
+
 inline scene_mesh flatten(const scene& s) {
   scene_mesh m;
+  const bool uvs = has_texture_coordinates(s);
   for (const bool hair : {false, true}) {
     if (hair) m.hair_first = m.indices.size();
     for (const object& o : s.objects) {
@@ -124,6 +158,7 @@ inline scene_mesh flatten(const scene& s) {
         m.positions.push_back(glm::vec3(o.transform * glm::vec4(o.geometry.positions[i], 1.0f)));
         m.normals.push_back(glm::normalize(normal_matrix * o.geometry.normals[i]));
         m.materials.push_back(o.material);
+        if (uvs) m.uvs.push_back(i < o.geometry.uvs.size() ? o.geometry.uvs[i] : glm::vec2(0.0f));
       }
       for (std::uint32_t i : o.geometry.indices) m.indices.push_back(base + i);
     }

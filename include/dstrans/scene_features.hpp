@@ -15,7 +15,9 @@
 //   the lookup of Eq. 3.1): a directional light reaches every object, a spot light those whose bounding
 //   sphere meets its cone and range, so it is conservative: an occluded pane still counts;
 // - many_layers: an object whose material is hair (per-pixel lists and the k-buffer resolve of S1);
-// - light_volumes: a particle system with particles (S2: the bake into a 3D texture, the particle pass).
+// - light_volumes: a particle system with particles (S2: the bake into a 3D texture, the particle pass);
+// - textures: an object whose material samples a texture or is alpha-tested (texture coordinates in the
+//   geometry passes, the scene's textures as one array).
 #pragma once
 
 #include <algorithm>
@@ -29,9 +31,9 @@
 
 namespace dstrans {
 
-enum class effect : unsigned { transparency, refraction, shadows, transparent_shadows, many_layers, light_volumes };
-constexpr effect all_effects[] = {effect::transparency, effect::refraction,  effect::shadows,
-                                  effect::transparent_shadows, effect::many_layers, effect::light_volumes};
+enum class effect : unsigned { transparency, refraction, shadows, transparent_shadows, many_layers, light_volumes, textures };
+constexpr effect all_effects[] = {effect::transparency, effect::refraction,    effect::shadows, effect::transparent_shadows,
+                                  effect::many_layers,  effect::light_volumes, effect::textures};
 
 // The effect's name in plans and reports.
 constexpr const char* effect_name(effect e) {
@@ -42,6 +44,7 @@ constexpr const char* effect_name(effect e) {
     case effect::transparent_shadows: return "transparent_shadows";
     case effect::many_layers: return "many_layers";
     case effect::light_volumes: return "light_volumes";
+    case effect::textures: return "textures";
   }
   return "";
 }
@@ -55,6 +58,7 @@ constexpr const char* effect_switch(effect e) {
     case effect::transparent_shadows: return "DST_TRANSPARENT_SHADOWS";
     case effect::many_layers: return "DST_MANY_LAYERS";
     case effect::light_volumes: return "DST_LIGHT_VOLUMES";
+    case effect::textures: return "DST_TEXTURES";
   }
   return "";
 }
@@ -69,7 +73,7 @@ struct effects {
   constexpr bool operator==(effects o) const { return bits == o.bits; }
   constexpr bool operator!=(effects o) const { return bits != o.bits; }
   // Every effect, in the order of all_effects.
-  static constexpr effects all() { return {(1u << 6) - 1u}; }
+  static constexpr effects all() { return {(1u << 7) - 1u}; }
   std::vector<std::string> names() const {
     std::vector<std::string> out;
     for (effect e : all_effects)
@@ -156,6 +160,12 @@ inline std::vector<feature> scene_features(const scene& s) {
     const std::uint32_t m = s.objects[i].material;
     if (m < s.materials.size() && s.materials[m].hair)
       add(effect::many_layers, "objects[" + std::to_string(i) + "] has material " + std::to_string(m) + ", which is hair");
+    if (m < s.materials.size() && s.materials[m].textured()) {
+      const material& t = s.materials[m];
+      add(effect::textures, "objects[" + std::to_string(i) + "] has material " + std::to_string(m) +
+                                (t.texture >= 0 ? ", which samples textures[" + std::to_string(t.texture) + "]"
+                                                : ", alpha-tested at " + number(t.alpha_cutoff)));
+    }
     if (m >= s.materials.size() || !s.materials[m].transparent()) continue;
     const std::string what = "objects[" + std::to_string(i) + "] has material " + std::to_string(m) + " with alpha " +
                              number(s.materials[m].alpha);

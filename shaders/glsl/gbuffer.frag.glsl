@@ -9,13 +9,13 @@ layout(binding = DST_SLOT_PEEL_DEPTH) uniform sampler2D dst_peel_depth;
 #endif
 
 void main() {
-  dst_material_data m = materials[surface_material];
+  dst_surface s = dst_material_surface(materials[surface_material], world_normal);
 #ifdef DST_PEEL
-  if (dst_transparent(m.diffuse_alpha.w) || gl_FragCoord.z <= texelFetch(dst_peel_depth, dst_pixel(), 0).x) discard;
+  if (dst_transparent(s.alpha) || gl_FragCoord.z <= texelFetch(dst_peel_depth, dst_pixel(), 0).x) discard;
 #endif
 #ifdef DST_TRANSPARENCY
   // frame.interlace.xy: this frame's phase (temporal interlacing alternates the rows that keep glass).
-  if (dst_transparent(m.diffuse_alpha.w) && !dst_interlace_keep(dst_pixel() + frame.interlace.xy, frame.size.xy)) discard;
+  if (dst_transparent(s.alpha) && !dst_interlace_keep(dst_pixel() + frame.interlace.xy, frame.size.xy)) discard;
 #endif
-  dst_gbuffer_write(dst_material_surface(m, world_normal));
+  dst_gbuffer_write(s);
 }

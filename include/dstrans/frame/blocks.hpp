@@ -34,6 +34,8 @@ DSTRANS_SHARED(dst_material_data,
 struct dst_material_data {
   vec4 diffuse_alpha;
   vec4 specular;        // x: intensity, y: power, z: refractive, w: hair (drawn into the k-buffer)
+  vec4 texture;         // x: its layer of the material textures (-1: none), y: the alpha cutoff (0: none),
+                        // z: 1 where the texels' alpha multiplies alpha, w: the wrap modes, s + 3 t (dst_wrap)
 };
 )
 
@@ -49,6 +51,6 @@ struct dst_light_data {
 };
 )
 
-static_assert(sizeof(dstrans::shader::dst_frame_data) == 400 && sizeof(dstrans::shader::dst_material_data) == 32 &&
+static_assert(sizeof(dstrans::shader::dst_frame_data) == 400 && sizeof(dstrans::shader::dst_material_data) == 48 &&
                   sizeof(dstrans::shader::dst_light_data) == 192,
               "dstrans blocks: a block's C++ size differs from its std140/std430 size (GLM with padding?)");

@@ -88,8 +88,9 @@ result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shaders, con
 
 // The forward renderer's passes: ambient (colour, normal, depth), one light, and the blend.
 enum class forward_stage { ambient, light, blend };
-// The options' transmittance and specular apply to the light stage.
-result<pass_sources> forward_pass(const pass_shaders& shaders, forward_stage stage, bool with_depth, shadow_mode mode,
+// The options' transmittance and specular apply to the light stage; of the effects `on`, textures apply to
+// the ambient and light stages.
+result<pass_sources> forward_pass(const pass_shaders& shaders, forward_stage stage, bool with_depth, shadow_mode mode, effects on,
                                   const options& o = {});
 // Its targets: lit colour and alpha (RGBA32F with float targets), the normal, and with depth the window depth.
 std::vector<target_desc> forward_targets(bool with_depth, bool float_targets = false);
@@ -134,8 +135,14 @@ inline std::vector<std::string> shadow_switches(shadow_mode mode) {
   return {effect_switch(effect::shadows), effect_switch(effect::transparent_shadows)};
 }
 
-inline result<pass_sources> scene_vertex(const pass_shaders& shaders, pass_sources p) {
-  if (auto ok = pass_detail::finish(p.vertex, shaders, {"gbuffer.vert.glsl"}); !ok) return failure{ok.error()};
+// The textures switch, where `on` has the effect (the geometry passes sample the materials' textures).
+inline std::vector<std::string> texture_switches(effects on) {
+  if (!on.has(effect::textures)) return {};
+  return {effect_switch(effect::textures)};
+}
+
+inline result<pass_sources> scene_vertex(const pass_shaders& shaders, pass_sources p, const std::vector<std::string>& switches = {}) {
+  if (auto ok = pass_detail::finish(p.vertex, shaders, {"gbuffer.vert.glsl"}, switches); !ok) return failure{ok.error()};
   return p;
 }
 
@@ -179,7 +186,7 @@ inline void add_gbuffer_layout(glsl::source& src, gbuffer_layout l, const std::s
 
 inline result<pass_sources> gbuffer_pass(const pass_shaders& shaders, layer which, effects on, const options& opt) {
   pass_sources p;
-  std::vector<std::string> switches;
+  std::vector<std::string> switches = pass_detail::texture_switches(on);
   if (which == layer::second) switches.push_back("DST_PEEL");
   glsl::layout_options o;
   o.sides = glsl::side::write;
@@ -190,7 +197,7 @@ inline result<pass_sources> gbuffer_pass(const pass_shaders& shaders, layer whic
     add_predicate(p.fragment, opt.interlace);
   }
   if (auto ok = pass_detail::finish(p.fragment, shaders, {"gbuffer.frag.glsl"}, switches); !ok) return failure{ok.error()};
-  return pass_detail::scene_vertex(shaders, std::move(p));
+  return pass_detail::scene_vertex(shaders, std::move(p), pass_detail::texture_switches(on));
 }
 
 inline result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode mode, effects on) {
@@ -199,8 +206,9 @@ inline result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode
   if (mode == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
   std::vector<std::string> switches = pass_detail::shadow_switches(mode);
   if (on.has(effect::many_layers)) switches.push_back(effect_switch(effect::many_layers));
+  for (const std::string& s : pass_detail::texture_switches(on)) switches.push_back(s);
   if (auto ok = pass_detail::finish(p.fragment, shaders, {"shadow.frag.glsl"}, switches); !ok) return failure{ok.error()};
-  return pass_detail::scene_vertex(shaders, std::move(p));
+  return pass_detail::scene_vertex(shaders, std::move(p), pass_detail::texture_switches(on));
 }
 
 namespace pass_detail {
@@ -433,10 +441,11 @@ inline std::vector<target_desc> forward_targets(bool with_depth, bool float_targ
   return t;
 }
 
-inline result<pass_sources> forward_pass(const pass_shaders& shaders, forward_stage stage, bool with_depth, shadow_mode mode,
+inline result<pass_sources> forward_pass(const pass_shaders& shaders, forward_stage stage, bool with_depth, shadow_mode mode, effects on,
                                          const options& o) {
   pass_sources p;
   std::vector<std::string> switches;
+  if (stage != forward_stage::blend) switches = pass_detail::texture_switches(on);
   if (with_depth) switches.push_back("DST_FORWARD_DEPTH");
   if (stage == forward_stage::light) {
     for (const std::string& s : pass_detail::shadow_switches(mode)) switches.push_back(s);

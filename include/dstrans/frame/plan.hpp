@@ -631,8 +631,15 @@ inline frame_block light_frame(const scene& s, const light_block& l, const optio
 
 inline std::vector<material_block> material_blocks(const scene& s) {
   std::vector<material_block> out;
-  for (const material& m : s.materials)
-    out.push_back({glm::vec4(m.diffuse, m.alpha), glm::vec4(m.spec_intensity, m.spec_power, m.refractive ? 1.0f : 0.0f, m.hair ? 1.0f : 0.0f)});
+  for (const material& m : s.materials) {
+    // A texture index out of range samples nothing; the layer of an invalid texture is white.
+    const bool sampled = m.textured() && m.texture >= 0 && std::size_t(m.texture) < s.textures.size();
+    const texture* t = sampled ? &s.textures[std::size_t(m.texture)] : nullptr;
+    const float cutoff = m.textured() && m.alpha_cutoff > 0.0f ? m.alpha_cutoff : 0.0f;
+    out.push_back({glm::vec4(m.diffuse, m.alpha), glm::vec4(m.spec_intensity, m.spec_power, m.refractive ? 1.0f : 0.0f, m.hair ? 1.0f : 0.0f),
+                   glm::vec4(t ? float(m.texture) : -1.0f, cutoff, m.transparent() || cutoff > 0.0f ? 1.0f : 0.0f,
+                             t ? float(int(t->wrap_s) + 3 * int(t->wrap_t)) : 0.0f)});
+  }
   return out;
 }
 

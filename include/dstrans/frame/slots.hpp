@@ -38,6 +38,7 @@ enum class slot {
   shadow_layers,
   post_input,        // a post-processing pass: its input images and its parameters
   post_params,
+  material_textures, // the scene's textures as one array (material_textures.hpp), for the geometry passes
 };
 
 // What a slot binds: sampled textures (a texture unit each on GL), a storage image, a uniform block, a
@@ -74,6 +75,7 @@ inline constexpr slot_desc slot_table[] = {
     {slot::shadow_layers, "SHADOW_LAYERS", 30, 2, slot_kind::texture},
     {slot::post_input, "POST_INPUT", 32, 2, slot_kind::texture},
     {slot::post_params, "POST_PARAMS", 34, 1, slot_kind::uniform_block},
+    {slot::material_textures, "MATERIAL_TEXTURES", 35, 1, slot_kind::texture},
 };
 
 // The first binding of slot `s`.
