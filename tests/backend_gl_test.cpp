@@ -112,6 +112,14 @@ TEST_CASE("GL: clear errors for layouts the device cannot hold and shaders that 
   REQUIRE_FALSE(program);
   CHECK_THAT(program.error(), Catch::Contains("broken.frag:12:") && Catch::Contains("missing_value"));
   ctx->debug_messages();  // the driver may report the failed compile itself
+
+  texture_array wide;  // past the context's array layers: refused before anything is made
+  wide.width = wide.height = 1;
+  wide.layers = 1 << 20;
+  wide.levels = {std::vector<std::uint8_t>(4)};
+  auto past = gl::make_texture_array(wide, "wide textures");
+  REQUIRE_FALSE(past);
+  CHECK_THAT(past.error(), Catch::StartsWith("wide textures: 1048576 layers of 1 x 1") && Catch::Contains("exceed the context's array textures"));
 }
 
 TEST_CASE("GL: targets, meshes, timers and labels work and state_guard restores the engine's state", "[gl]") {
@@ -137,9 +145,18 @@ TEST_CASE("GL: targets, meshes, timers and labels work and state_guard restores 
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 7);
+  scene textured;  // a texture array uploads with the unpack state it needs, which the guard restores
+  textured.textures.push_back({3, 2, std::vector<std::uint8_t>(24)});
+  for (std::size_t i = 0; i < textured.textures[0].rgba.size(); ++i) textured.textures[0].rgba[i] = std::uint8_t(i * 10);
+  const texture_array a = texture_array_of(textured);
   double ms = -1.0;
+  GLuint array = 0;
   {
     gl::state_guard keep;
+    auto made = gl::make_texture_array(a, "texture array test");
+    REQUIRE(made);
+    array = *made;
     gl::debug_group group("dstrans test pass");
     gl::bind(*targets);
     glDisable(GL_BLEND);
@@ -172,6 +189,16 @@ TEST_CASE("GL: targets, meshes, timers and labels work and state_guard restores 
   CHECK(mask == GL_FALSE);
   CHECK(origin == GL_LOWER_LEFT);
   CHECK(program_now == 0);
+  GLint row_length = 0;
+  glGetIntegerv(GL_UNPACK_ROW_LENGTH, &row_length);
+  CHECK(row_length == 7);
+  std::vector<std::uint8_t> level0(a.levels[0].size()), level1(a.levels[1].size());
+  glGetTextureImage(array, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(level0.size()), level0.data());
+  glGetTextureImage(array, 1, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(level1.size()), level1.data());
+  CHECK(level0 == a.levels[0]);
+  CHECK(level1 == a.levels[1]);
+  glDeleteTextures(1, &array);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
 
   // The sphere, at half scale, covers the centre and leaves the corners.
   const auto texels = gl::read_texels(*targets, 0);

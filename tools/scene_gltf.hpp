@@ -31,7 +31,8 @@
 //   but whose texture has alpha is glass (alpha 254/255, what the G-buffer stores for any alpha that
 //   close to 1, times the texel's). Approximated: every texture is read trilinearly with mip levels
 //   whatever its sampler's filters, and resampled to the largest texture's size (at most 1024 a side)
-//   to share one array (material_textures.hpp); KHR_texture_transform, where not required, is ignored.
+//   to share one array (material_textures.hpp). KHR_texture_transform's offset, rotation and scale are
+//   applied to the texture coordinates as they are read.
 //   Other textures (normal, metallic-roughness, occlusion, emissive, transmission) are not read.
 // - Cameras: the first perspective camera met walking the scene (its yfov, znear and zfar; an infinite zfar
 //   becomes 1000 znear), looking down its node's -Z with +Y up. Without one, a camera 45 degrees wide frames

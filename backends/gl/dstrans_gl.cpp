@@ -8,6 +8,10 @@ namespace dstrans::gl {
 
 namespace {
 
+// How texel uploads read client memory, besides the alignment.
+constexpr GLenum unpack_layout[5] = {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_IMAGE_HEIGHT,
+                                     GL_UNPACK_SKIP_IMAGES};
+
 // A shader's or program's info log (the two getters have the same shape).
 std::string info_log(GLuint object, void (*get_iv)(GLuint, GLenum, GLint*),
                      void (*get_log)(GLuint, GLsizei, GLsizei*, GLchar*)) {
@@ -219,16 +223,35 @@ void label(GLenum identifier, GLuint name, const std::string& text) {
   glObjectLabel(identifier, name, GLsizei(text.size()), text.c_str());
 }
 
+result<GLuint> make_texture_array(const texture_array& a, const std::string& label_text) {
+  GLint layers = 0, largest = 0;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
+  if (a.layers > layers || a.width > largest || a.height > largest)
+    return failure{label_text + ": " + std::to_string(a.layers) + " layers of " + std::to_string(a.width) + " x " + std::to_string(a.height) +
+                   " RGBA8 texels exceed the context's array textures (" + std::to_string(layers) + " layers of " + std::to_string(largest) + ")"};
+  GLuint t = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
+  glTextureStorage3D(t, GLsizei(a.levels.size()), GL_RGBA8, a.width, a.height, a.layers);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  for (GLenum p : unpack_layout) glPixelStorei(p, 0);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  for (std::size_t l = 0; l < a.levels.size(); ++l) {
+    const glm::ivec2 size = a.level_size(int(l));
+    glTextureSubImage3D(t, GLint(l), 0, 0, 0, size.x, size.y, a.layers, GL_RGBA, GL_UNSIGNED_BYTE, a.levels[l].data());
+  }
+  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  label(GL_TEXTURE, t, label_text);
+  return t;
+}
+
 debug_group::debug_group(const std::string& name) {
   glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, GLsizei(name.size()), name.c_str());
 }
 debug_group::~debug_group() { glPopDebugGroup(); }
-
-namespace {
-// How texel uploads read client memory, besides the alignment.
-constexpr GLenum unpack_layout[5] = {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_IMAGE_HEIGHT,
-                                     GL_UNPACK_SKIP_IMAGES};
-}  // namespace
 
 state_guard::state_guard(const std::vector<GLuint>& storage_blocks) {
   glGetIntegerv(GL_CURRENT_PROGRAM, &program_);

@@ -33,6 +33,7 @@
 #include <dstrans/glsl.hpp>
 #include <dstrans/layout.hpp>
 #include <dstrans/light_mesh.hpp>
+#include <dstrans/material_textures.hpp>
 #include <dstrans/result.hpp>
 
 namespace dstrans::gl {
@@ -64,6 +65,10 @@ std::vector<texel> read_texels(const targets& t, int index);
 // A linked program from a vertex and a fragment shader, or from a compute shader; failures carry the
 // driver's log with positions mapped to the dstrans sources they came from.
 result<GLuint> make_program(const glsl::source& vertex, const glsl::source& fragment, const std::string& label);
+// The material textures `a` as a 2D array texture with its mip levels, filled, sampled repeating and
+// trilinearly (the pass shaders wrap each texture as it says); a failure past the context's array limits.
+// It touches the unpack state, which a state_guard restores.
+result<GLuint> make_texture_array(const texture_array& a, const std::string& label);
 result<GLuint> make_compute_program(const glsl::source& compute, const std::string& label);
 
 // An indexed triangle mesh with positions at attribute 0.

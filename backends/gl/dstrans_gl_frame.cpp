@@ -5,7 +5,6 @@
 #include <cstddef>
 
 #include <dstrans/frame/passes.hpp>
-#include <dstrans/material_textures.hpp>
 #include <dstrans/particles.hpp>
 
 namespace dstrans::gl {
@@ -28,33 +27,6 @@ GLuint make_buffer(const std::vector<T>& data, const std::string& name) {
                        GL_DYNAMIC_STORAGE_BIT);
   label(GL_BUFFER, b, name);
   return b;
-}
-
-// The material textures (material_textures.hpp) as a 2D array texture with its mip levels, read repeating
-// and trilinearly (the shader wraps each texture as it says); a failure past the device's array limits.
-result<GLuint> make_texture_array(const texture_array& a) {
-  GLint layers = 0, largest = 0;
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &layers);
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
-  if (a.layers > layers || a.width > largest || a.height > largest)
-    return failure{"the scene's " + std::to_string(a.layers) + " textures of " + std::to_string(a.width) + " x " + std::to_string(a.height) +
-                   " texels exceed the device's array textures (" + std::to_string(layers) + " layers of " + std::to_string(largest) + ")"};
-  GLuint t = 0;
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t);
-  glTextureStorage3D(t, GLsizei(a.levels.size()), GL_RGBA8, a.width, a.height, a.layers);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_IMAGES}) glPixelStorei(p, 0);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  for (std::size_t l = 0; l < a.levels.size(); ++l) {
-    const glm::ivec2 size = a.level_size(int(l));
-    glTextureSubImage3D(t, GLint(l), 0, 0, 0, size.x, size.y, a.layers, GL_RGBA, GL_UNSIGNED_BYTE, a.levels[l].data());
-  }
-  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  label(GL_TEXTURE, t, "material textures");
-  return t;
 }
 
 // Binds the light-index attribute of vertex array `vao` to `indices`, one a instance.
@@ -240,7 +212,7 @@ result<bool> renderer::impl::make_fixed() {
   shadow_ubo = make_buffer(std::vector<frame_block>{camera_frame(description, o)}, "light frame");
   materials = make_buffer(material_blocks(description), "materials");
   if (plan.on.has(effect::textures)) {
-    auto t = make_texture_array(texture_array_of(description));
+    auto t = make_texture_array(texture_array_of(description), "material textures");
     if (!t) return failure{t.error()};
     material_textures = *t;
     textures.push_back(material_textures);
