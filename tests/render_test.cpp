@@ -906,14 +906,11 @@ TEST_CASE("soft shadows: the penumbra of a coloured and an opaque pane nears a s
     }
 }
 
-// A glTF file is drawn as the scene it describes: the coloured pane's shadow scene written as glTF
-// (gltf_writer.hpp) and read back renders as the scene itself, on both backends. glTF has no ambient
-// light, so the loaded scene keeps dstrans's default and the test sets the original's.
 namespace {
 
-// shadow_scene with textures: the floor in 4 m squares of a texture in four colours (yellow, red / green,
-// blue, 8 texels each), the pane above it opaque and alpha-tested by a white texture whose left half is
-// clear, so that the spot light passes that half alone.
+// shadow_scene with textures: the floor in 2 m squares of four colours (a texture every 4 m whose quadrants,
+// 8 texels each, are yellow, red / green, blue), the pane above it opaque and alpha-tested by a white
+// texture whose left half is clear, so that the spot light passes that half alone.
 scene textured_scene() {
   scene s = shadow_scene(1.0f, glm::vec3(1.0f));
   s.lights[0].intensity = 0.9f;  // the light buffer's RGBA8 clamps light at 1, forward rendering does not
@@ -1043,6 +1040,9 @@ TEST_CASE("assimp's valid glTF test models render alike on OpenGL and Vulkan", "
   }
 }
 
+// A glTF file is drawn as the scene it describes: the coloured pane's shadow scene, and its textured one,
+// written as glTF (gltf_writer.hpp) and read back render as the scenes themselves, on both backends. glTF
+// has no ambient light, so the loaded scene keeps dstrans's default and the test sets the original's.
 TEST_CASE("a glTF file renders as the scene it describes", "[render][gltf]") {
   for (const scene& s : {shadow_scene(0.5f, glm::vec3(1.0f, 0.5f, 0.25f)), textured_scene()}) {
     gltf_doc d = from_scene(s);
