@@ -46,7 +46,7 @@ inline scene effect_scene(rung r) {
   if (r >= rung::textured) {
     s.textures.push_back(chequer(2, 4, {255, 255, 255, 255}, {90, 140, 200, 255}));
     s.materials[0].texture = 0;
-    for (const glm::vec3& p : s.objects[0].geometry.positions) s.objects[0].geometry.uvs.emplace_back(p.x, p.z);  // a square a metre
+    for (const glm::vec3& p : s.objects[0].geometry.positions) s.objects[0].geometry.uvs.emplace_back(p.x, p.z);  // a texture a metre
   }
   s.objects.push_back({shape_box({0.6f, 0.8f, 0.6f}), glm::translate(glm::mat4(1.0f), {1.0f, 0.4f, -1.0f}), 1});
   if (r >= rung::glass)
