@@ -676,19 +676,28 @@ scene shadow_scene(float alpha, glm::vec3 colour) {
   return s;
 }
 
-// Calls visit(i, p) for every pixel i of frame f of scene s that shows the white floor (opaque, diffuse 1),
-// with its world position p.
+// Calls visit(i, p) for every pixel i of frame f of scene s that shows a surface (its G-buffer's depth below
+// 1), with its world position p.
 template <class Visit>
-void floor_pixels(const frame& f, const scene& s, const options& o, Visit&& visit) {
+void surface_pixels(const frame& f, const scene& s, const options& o, Visit&& visit) {
   const glm::mat4 to_world = render::camera_frame(s, o).inv_view_proj;
   for (int y = 0; y < o.height; ++y)
     for (int x = 0; x < o.width; ++x) {
       const std::size_t i = std::size_t(y * o.width + x);
-      const surface g = gbuffer_at(f, i);
-      if (g.alpha < 1.0f || g.diffuse != glm::vec3(1.0f) || g.depth >= 1.0f) continue;
-      const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), g.depth, 1.0f);
+      const float depth = gbuffer_at(f, i).depth;
+      if (depth >= 1.0f) continue;
+      const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), depth, 1.0f);
       visit(i, glm::vec3(h) / h.w);
     }
+}
+
+// The same for the pixels that show the white floor (opaque, diffuse 1).
+template <class Visit>
+void floor_pixels(const frame& f, const scene& s, const options& o, Visit&& visit) {
+  surface_pixels(f, s, o, [&](std::size_t i, glm::vec3 p) {
+    const surface g = gbuffer_at(f, i);
+    if (g.alpha >= 1.0f && g.diffuse == glm::vec3(1.0f)) visit(i, p);
+  });
 }
 
 // How many of scene s's features are effect `what` for the reason `why`.
@@ -937,18 +946,12 @@ scene textured_scene() {
   return s;
 }
 
-// Calls visit(i, p) for every pixel i of frame f of scene s that shows a surface at y = 0 (shadow_scene's
-// floor), with its world position p.
+// surface_pixels for the surfaces at y = 0 (shadow_scene's floor, whatever its colour).
 template <class Visit>
 void floor_top_pixels(const frame& f, const scene& s, const options& o, Visit&& visit) {
-  const glm::mat4 to_world = render::camera_frame(s, o).inv_view_proj;
-  for (int y = 0; y < o.height; ++y)
-    for (int x = 0; x < o.width; ++x) {
-      const std::size_t i = std::size_t(y * o.width + x);
-      const float depth = gbuffer_at(f, i).depth;
-      const glm::vec4 h = to_world * glm::vec4(shader::dst_pixel_ndc({x, y}, {o.width, o.height}), depth, 1.0f);
-      if (depth < 1.0f && std::fabs(h.y / h.w) <= 0.01f) visit(i, glm::vec3(h) / h.w);
-    }
+  surface_pixels(f, s, o, [&](std::size_t i, glm::vec3 p) {
+    if (std::fabs(p.y) <= 0.01f) visit(i, p);
+  });
 }
 }  // namespace
 
