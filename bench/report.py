@@ -745,8 +745,10 @@ def write_gltf(w, rows):
     w("Glass as glTF describes it (examples/scenes/make_glass_shelf.py: KHR_materials_transmission panes, "
       "solid glass with KHR_materials_volume tints, %d triangles, %d punctual lights, each casting transparent "
       "shadows), %dx%d, refraction on. The reference is deferred depth peeling; the temporal row is the third "
-      "frame of a still camera. Times are one run's median frame; peeling's over interlacing's, timed in "
-      "pairs with its interval, is the glass_shelf row of The targets, timed in pairs."
+      "frame of a still camera. The -rough rows blur what rough glass refracts (--rough-refraction on: the "
+      "frosted pane, roughness 0.6) and are compared with peeling that blurs alike. Times are one run's median "
+      "frame; peeling's over interlacing's, and the blur's cost (rough over sharp), timed in pairs with their "
+      "intervals, are the glass_shelf rows of The targets, timed in pairs."
       % (first["triangles"], first["lights"], first["width"], first["height"]))
     w("")
     w("| backend | technique | ms | bytes/px | RMSE | RMSE on glass | %s |" % SSIM_FLIP_HEAD)

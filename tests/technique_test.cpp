@@ -2,6 +2,8 @@
 // text runs on the GPU in backend_*_test.cpp.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include <dstrans/phong.hpp>
 #include <dstrans/refraction.hpp>
 #include <dstrans/transparent_shadow.hpp>
@@ -121,4 +123,47 @@ TEST_CASE("refraction offset, depth rejection and the compose blend (Eq. 3.3)", 
   CHECK(dst_compose(o, lo, t, lt, ambient) == dst_shade(o, lo, ambient));
   t.alpha = 1.0f;
   CHECK(dst_compose(o, lo, t, lt, ambient) == dst_shade(t, lt, ambient));
+}
+
+TEST_CASE("rough glass: roughness to the Phong exponent and back, the blur's radius and its taps", "[refraction]") {
+  // glTF's roughness as the exponent 2 / r^4 - 2 within [1, 255], and back.
+  CHECK(dst_phong_power_of_roughness(0.5f) == Approx(30.0f));
+  CHECK(dst_phong_power_of_roughness(0.0f) == 255.0f);
+  CHECK(dst_phong_power_of_roughness(0.29f) == 255.0f);  // clearer than 8 bits tell
+  CHECK(dst_phong_power_of_roughness(1.0f) == 1.0f);
+  for (float r = 0.3f; r <= 0.9f; r += 0.05f)
+    CHECK(dst_roughness_of_phong_power(dst_phong_power_of_roughness(r)) == Approx(r).epsilon(1e-5));
+  // What the G-buffer stores, 8 bits of [0, 255]: every code below 255 reads back rough, 255 clear.
+  CHECK(dst_roughness_of_phong_power(dst_decode_spec_power(254.0f / 255.0f)) == Approx(0.2972f).epsilon(1e-3));
+  CHECK(dst_roughness_of_phong_power(dst_decode_spec_power(1.0f)) == 0.0f);
+
+  // Roughness 0.5 spreads the light tan(0.25) wide a unit behind the glass; seen from 2 units away with
+  // 100 pixels a unit at unit depth: 100 tan(0.25) / 2 pixels.
+  CHECK(dst_refraction_blur_pixels(0.5f, 1.0f, 2.0f, 100.0f, 64.0f) == Approx(50.0f * std::tan(0.25f)));
+  CHECK(dst_refraction_blur_pixels(0.5f, 1.0f, 2.0f, 100.0f, 4.0f) == 4.0f);   // the limit
+  CHECK(dst_refraction_blur_pixels(0.0f, 1.0f, 2.0f, 100.0f, 64.0f) == 0.0f);  // clear glass
+  CHECK(dst_refraction_blur_pixels(0.5f, 2.0f, 2.0f, 100.0f, 64.0f) == 0.0f);  // touching the glass
+  // The spread is at most 1 radian, however large the roughness.
+  CHECK(dst_refraction_blur_pixels(5.0f, 1.0f, 2.0f, 100.0f, 100.0f) == Approx(50.0f * std::tan(1.0f)));
+
+  // 15 taps, weights summing to 1, within the unit disc, centred, and mirrored about the x axis.
+  float weight = 0.0f;
+  glm::vec2 mean(0.0f);
+  for (int i = 0; i < 15; ++i) {
+    const glm::vec3 tap = dst_refraction_blur_tap(i);
+    CHECK(tap.z > 0.0f);
+    CHECK(glm::length(glm::vec2(tap.x, tap.y)) <= 1.0f + 1e-6f);
+    weight += tap.z;
+    mean += glm::vec2(tap.x, tap.y) * tap.z;
+    bool mirrored = false;
+    for (int j = 0; j < 15; ++j) {
+      const glm::vec3 other = dst_refraction_blur_tap(j);
+      mirrored = mirrored || (std::fabs(other.x - tap.x) < 1e-6f && std::fabs(other.y + tap.y) < 1e-6f && other.z == tap.z);
+    }
+    CHECK(mirrored);
+  }
+  CHECK(weight == Approx(1.0f));
+  CHECK(glm::length(mean) < 1e-6f);
+  CHECK(dst_refraction_blur_tap(15) == glm::vec3(0.0f));
+  CHECK(dst_refraction_blur_tap(-1) == glm::vec3(0.0f));
 }

@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <spawn.h>
@@ -508,7 +509,8 @@ result<json> soft_shadow_records(const scene& room, const render::options& base,
 // glass_shelf.gltf (scene "glass_shelf" in the results), glass as glTF describes it: the thesis's method,
 // with the edge-aware reconstruction and with temporal interlacing, against depth peeling, with forward
 // rendering beside, transparent shadows from every light and refraction on; errors over all pixels and over
-// the glass of the peeled first layer.
+// the glass of the peeled first layer. The "-rough" rows blur refraction through rough glass
+// (options::rough_refraction), against peeling that blurs alike.
 template <class Draw, class DrawSequence>
 result<json> gltf_records(const scene& shelf, const render::options& base, const std::string& backend, Draw&& draw,
                           DrawSequence&& draw_sequence) {
@@ -519,43 +521,52 @@ result<json> gltf_records(const scene& shelf, const render::options& base, const
   o.method = T::peeling;
   auto peeled = draw(shelf, o);
   if (!peeled) return failure{peeled.error()};
+  render::options rough = o;
+  rough.rough_refraction = true;
+  auto peeled_rough = draw(shelf, rough);
+  if (!peeled_rough) return failure{peeled_rough.error()};
   const std::vector<bool> glass = render::glass_pixels(*peeled);
   const std::size_t triangles = flatten(shelf).indices.size() / 3;
   struct variant {
     const char* name;
     T method;
-    bool reconstruct, temporal;
+    bool reconstruct, temporal, rough;
   };
   json records = json::array();
-  for (const variant& v : {variant{"interlaced", T::interlaced, false, false}, variant{"interlaced-edge-aware", T::interlaced, true, false},
-                           variant{"interlaced-temporal", T::interlaced, true, true}, variant{"peeling", T::peeling, false, false},
-                           variant{"forward-depth", T::forward_depth, false, false}}) {
+  for (const variant& v : {variant{"interlaced", T::interlaced, false, false, false},
+                           variant{"interlaced-edge-aware", T::interlaced, true, false, false},
+                           variant{"interlaced-temporal", T::interlaced, true, true, false}, variant{"peeling", T::peeling, false, false, false},
+                           variant{"forward-depth", T::forward_depth, false, false, false},
+                           variant{"interlaced-rough", T::interlaced, false, false, true},
+                           variant{"peeling-rough", T::peeling, false, false, true}}) {
     render::options with = o;
     with.method = v.method;
     with.reconstruct = v.reconstruct;
     with.temporal = v.temporal;
+    with.rough_refraction = v.rough;
+    const render::frame& reference = v.rough ? *peeled_rough : *peeled;
     result<render::frame> f = failure{""};
     if (v.temporal) {  // a still camera: the last of a few frames, the history filled
       auto frames = draw_sequence(std::vector<scene>(3, shelf), with);
       if (!frames) return failure{frames.error()};
       f = frames->back();
     } else {
-      f = v.method == T::peeling ? result<render::frame>(*peeled) : draw(shelf, with);
+      f = v.method == T::peeling ? result<render::frame>(reference) : draw(shelf, with);
     }
     if (!f) return failure{f.error()};
     const render::frame_plan plan = render::plan_of(shelf, with);
-    const render::image_error e = render::compare(f->final_image, peeled->final_image, glass);
+    const render::image_error e = render::compare(f->final_image, reference.final_image, glass);
     records.push_back(render::with_errors({{"technique", v.name},
                                            {"scene", "glass_shelf"},
                                            {"backend", backend},
                                            {"settings", {{"lights", shelf.lights.size()}, {"width", with.width}, {"height", with.height},
-                                                         {"frames", f->frames}, {"triangles", triangles}}},
+                                                         {"frames", f->frames}, {"triangles", triangles}, {"rough_refraction", v.rough}}},
                                            {"frame_ms", f->frame_ms},
                                            {"frame_ms_spread", f->frame_ms_spread},
                                            {"pass_ms", f->pass_ms},
-                                           {"peeling_ms", peeled->frame_ms},
+                                           {"peeling_ms", reference.frame_ms},
                                            {"bytes_per_pixel", v.method == T::peeling ? 2 * plan.pipeline.bytes_per_pixel : plan.pipeline.bytes_per_pixel},
-                                           {"reference", "deferred depth peeling"}}, e));
+                                           {"reference", v.rough ? "deferred depth peeling, rough refraction" : "deferred depth peeling"}}, e));
   }
   return records;
 }
@@ -1016,13 +1027,19 @@ int bench(std::vector<std::string> args) {
       interlaced.settings["technique"] = "interlaced";
       peeling.o.method = T::peeling;
       peeling.settings["technique"] = "peeling";
-      auto r = paired_record("peeling / interlaced, transparent shadows", *shelf, "glass_shelf_paired", interlaced, peeling,
-                             std::nullopt, nullptr, quick, backend, clock, meter);
-      if (!r) {
-        std::fprintf(stderr, "dstrans bench: glass_shelf.gltf in pairs on %s: %s\n", backend.c_str(), r.error().c_str());
-        return 1;
+      // What blurring refraction through rough glass costs: the compose pass alone differs.
+      paired_side rough = interlaced;
+      rough.o.rough_refraction = true;
+      rough.settings["rough_refraction"] = true;
+      for (auto [comparison, a, b] : {std::tuple{"peeling / interlaced, transparent shadows", &interlaced, &peeling},
+                                      std::tuple{"rough / sharp refraction, interlaced", &interlaced, &rough}}) {
+        auto r = paired_record(comparison, *shelf, "glass_shelf_paired", *a, *b, std::nullopt, nullptr, quick, backend, clock, meter);
+        if (!r) {
+          std::fprintf(stderr, "dstrans bench: glass_shelf.gltf in pairs on %s: %s\n", backend.c_str(), r.error().c_str());
+          return 1;
+        }
+        results.push_back(*r);
       }
-      results.push_back(*r);
     }
     std::vector<std::pair<std::string, std::string>> strips;  // the temporal benchmark's crops, a PNG a backend
     for (const std::string& b : {backend, std::string(backend == "gl" ? "vk" : "gl")}) {

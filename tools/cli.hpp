@@ -16,6 +16,10 @@ struct usage_error {
 // The value after option `name` in `args` (removing both), or `fallback` when absent.
 std::string take_option(std::vector<std::string>& args, const std::string& name, const std::string& fallback);
 
+// Whether option `name` in `args` (removing both) is "on" (true) or "off" (false); `fallback` when absent,
+// a usage_error for any other value.
+bool take_on_off(std::vector<std::string>& args, const std::string& name, bool fallback);
+
 // Whether flag `name` is in `args` (removing it).
 bool take_flag(std::vector<std::string>& args, const std::string& name);
 // What is left of `args` once every known option is taken: the operands, or a usage_error naming the first

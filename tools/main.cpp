@@ -40,6 +40,12 @@ std::string take_option(std::vector<std::string>& args, const std::string& name,
   return fallback;
 }
 
+bool take_on_off(std::vector<std::string>& args, const std::string& name, bool fallback) {
+  const std::string value = take_option(args, name, fallback ? "on" : "off");
+  if (value != "on" && value != "off") throw usage_error{name + " must be on or off, not '" + value + "'"};
+  return value == "on";
+}
+
 bool take_flag(std::vector<std::string>& args, const std::string& name) {
   const auto at = std::find(args.begin(), args.end(), name);
   if (at == args.end()) return false;

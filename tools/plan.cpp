@@ -20,9 +20,11 @@ using json = nlohmann::ordered_json;
 
 const char* const usage =
     "usage: dstrans plan <scene.json|.gltf|.glb> [--json] [--budget MIB] [--temporal on|off]\n"
+    "       [--rough-refraction on|off]\n"
     "the effects the scene calls for (and why), and the passes, render targets and shader switches of the\n"
     "interlaced deferred pipeline that runs exactly those effects, and a frame's passes in the order they run;\n"
-    "--temporal on: with temporal interlacing (the previous frame's targets, where the scene has glass)\n";
+    "--temporal on: with temporal interlacing (the previous frame's targets, where the scene has glass);\n"
+    "--rough-refraction on: with the compose pass's blur of refraction through rough glass\n";
 
 std::string joined(const std::vector<std::string>& words) {
   std::string out;
@@ -41,9 +43,8 @@ int plan(std::vector<std::string> args) {
     const bool as_json = take_flag(args, "--json");
     const scene_budget budget = take_budget(args);
     render::options o;
-    const std::string temporal = take_option(args, "--temporal", "off");
-    if (temporal != "on" && temporal != "off") throw usage_error{"--temporal must be on or off, not '" + temporal + "'"};
-    o.temporal = temporal == "on";
+    o.temporal = take_on_off(args, "--temporal", false);
+    o.rough_refraction = take_on_off(args, "--rough-refraction", false);
     const std::vector<std::string> files = operands(args);
     if (files.size() != 1) throw usage_error{"plan takes one scene file, not " + std::to_string(files.size()) + " arguments"};
     const auto s = load_scene(files[0], budget);

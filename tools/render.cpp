@@ -44,6 +44,9 @@ const char* const usage =
     "       [--temporal on|off]   temporal interlacing: the rows that keep glass alternate every frame and the\n"
     "                           compose pass takes a pixel's other layer from the previous frame where it is\n"
     "                           still there (with --frames 2 or more; doubles the G-buffer's bytes)\n"
+    "       [--rough-refraction on|off]   rough glass blurs what it refracts, by the roughness its Phong exponent\n"
+    "                           says (2 / r^4 - 2, as glTF's roughness is read; 255: clear); up to 15 samples a\n"
+    "                           glass pixel (deferred techniques; default off)\n"
     "       [--layout thesis|compact]   the G-buffer: Table 3.1's 16 bytes, or 8 with depth from the attachment\n"
     "       [--budget MIB]   the memory a scene and its frame may take (default 1024), estimated before anything\n"
     "                           is built; a larger scene is refused with its estimate\n"
@@ -103,9 +106,8 @@ int render(std::vector<std::string> args) {
     const std::string reconstruct = take_option(args, "--reconstruct", "partner");
     if (reconstruct == "edge-aware") o.reconstruct = true;
     else if (reconstruct != "partner") throw usage_error{"--reconstruct must be partner or edge-aware, not '" + reconstruct + "'"};
-    const std::string temporal = take_option(args, "--temporal", "off");
-    if (temporal == "on") o.temporal = true;
-    else if (temporal != "off") throw usage_error{"--temporal must be on or off, not '" + temporal + "'"};
+    o.temporal = take_on_off(args, "--temporal", false);
+    o.rough_refraction = take_on_off(args, "--rough-refraction", false);
     o.volume_cells = to_int(take_option(args, "--volume-cells", "16"), 1, 64, "--volume-cells");
     const std::string bias = take_option(args, "--shadow-bias", "");
     try {

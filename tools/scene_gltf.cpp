@@ -19,6 +19,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <dstrans/frame/plan.hpp>
+#include <dstrans/refraction.hpp>
 #include <stb/stb_image.h>
 #include <tiny_gltf.h>
 
@@ -160,8 +161,7 @@ std::pair<material, bool> from_gltf(const tinygltf::Material& g, const std::stri
   material out;
   out.diffuse = glm::vec3(base);
   out.spec_intensity = (0.04f + 0.96f * metallic) * (1.0f - roughness);
-  const float r4 = std::max(roughness * roughness * roughness * roughness, 1e-6f);
-  out.spec_power = std::clamp(2.0f / r4 - 2.0f, 1.0f, 255.0f);
+  out.spec_power = shader::dst_phong_power_of_roughness(roughness);
   bool drawn = true;
   if (g.alphaMode == "BLEND") out.alpha = base.a;
   else if (g.alphaMode == "MASK") drawn = double(base.a) >= g.alphaCutoff;

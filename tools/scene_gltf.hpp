@@ -19,8 +19,9 @@
 //   transmission) times the alpha above, refractive unless KHR_materials_ior sets ior 1 (the refraction's
 //   strength is the command's, not the ior's); KHR_materials_volume tints the glass by Beer's law over its
 //   thickness, attenuationColor ^ (thicknessFactor / attenuationDistance), in the shadow and the compose.
-//   Roughness r gives the Phong exponent 2 / r^4 - 2 (within 1-255, the Blinn-Phong match of GGX's width)
-//   and metallic m the specular intensity 0.04 + 0.96 m times (1 - r); metals keep their base colour as
+//   Roughness r gives the Phong exponent 2 / r^4 - 2 (within 1-255, the Blinn-Phong match of GGX's width;
+//   refraction.hpp's dst_phong_power_of_roughness), from which `--rough-refraction on` reads r back to blur
+//   what rough glass refracts (r up to 0.297 reads back as clear), and metallic m the specular intensity 0.04 + 0.96 m times (1 - r); metals keep their base colour as
 //   diffuse, since dstrans has no environment light.
 // - baseColorTexture: its image (PNG or JPEG, decoded only if a drawn material samples it, held to the
 //   budget) becomes a scene texture, read at the primitive's TEXCOORD_<texCoord> (floats or normalized

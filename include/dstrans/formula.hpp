@@ -393,6 +393,15 @@ inline const std::vector<formula>& formulas() {
       DSTRANS_FORMULA(dst_refraction, dst_refraction_source)
           .within({"depth_t", "alpha_moved", "depth_moved", "alpha_partner", "depth_partner"}, {0.0f, 1.0f}),
       DSTRANS_FORMULA(dst_refraction, dst_refraction_accepted_by_mask).within({"alpha_moved", "alpha_partner"}, {0.0f, 1.0f}),
+      DSTRANS_FORMULA(dst_rough_refraction, dst_phong_power_of_roughness).within("r", {0.0f, 1.0f}).yields(1.0f, 255.0f),
+      DSTRANS_FORMULA(dst_rough_refraction, dst_roughness_of_phong_power).within("n", {0.0f, 255.0f}).yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_rough_refraction, dst_refraction_blur_pixels)
+          .within("roughness", {0.0f, 1.0f})
+          .within({"z_t", "z_b"}, {0.1f, 100.0f})
+          .within("focal", {0.0f, 2000.0f})
+          .within("limit", {0.0f, 64.0f})
+          .yields(0.0f, 64.0f),
+      DSTRANS_FORMULA(dst_rough_refraction, dst_refraction_blur_tap).yields(-1.0f, 1.0f),
       DSTRANS_FORMULA(dst_compose, dst_shade)
           .within("s", {0.0f, 1.0f})
           .within("l", {0.0f, 4.0f})

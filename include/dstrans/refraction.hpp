@@ -14,6 +14,9 @@
 //   bool leak = dstrans::shader::dst_refraction_rejected(depth_t, depth_o);
 //   glm::vec3 colour = dstrans::shader::dst_compose(opaque, light_o, transparent, light_t, ambient);
 //   glm::vec3 same = dstrans::shader::dst_blend(lit_opaque, lit_transparent, alpha_t);   // colours already lit
+//   float r = dstrans::shader::dst_roughness_of_phong_power(surface.spec_power);     // rough glass
+//   float radius = dstrans::shader::dst_refraction_blur_pixels(r, z_glass, z_behind, focal, 32.0f);
+//   glm::vec3 tap = dstrans::shader::dst_refraction_blur_tap(i);   // xy * radius: offset, z: weight
 //   dstrans::glsl::add_refraction(src);   // GLSL: dst_refract(pixel, size, view_normal, strength), with
 //                                          // pixels counting rows as src's dialect says (glsl::rows)
 //
@@ -63,6 +66,48 @@ DST_FN int dst_refraction_source(float depth_t, float alpha_moved, float depth_m
 }
 DST_FN bool dst_refraction_accepted_by_mask(float alpha_moved, float alpha_partner) {
   return dst_transparent(alpha_moved) != dst_transparent(alpha_partner);
+}
+)
+
+// Rough glass (options::rough_refraction): the refracted sample blurred by the glass's roughness. glTF's
+// roughness r is stored as the Phong exponent 2 / r^4 - 2 within [1, 255] (the Blinn-Phong match of GGX's
+// width), and glTF transmits through the roughness it reflects with, so the compose reads r back from the
+// G-buffer's exponent: no byte more a pixel. An exponent of 255 (r up to 0.297, which 8 bits cannot tell
+// apart) reads back as clear glass. The transmitted light leaves within GGX's width r^2 (radians) of the
+// refracted ray, so it spreads over (z_b - z_t) tan(r^2) at a surface z_b behind glass at z_t (view
+// depths), focal (z_b - z_t) tan(r^2) / z_b pixels across, focal being the projection's pixels per unit at
+// unit depth (the spread is taken as at most 1 radian, the radius as at most `limit` pixels; a surface not
+// behind the glass, a NaN or a limit not above 0 gives 0). The blur is a uniform disc of that radius in 15 taps: a centre, a ring of 6 at half the radius
+// and a ring of 8 at the radius, each tap weighted by the area it stands for, and each ring symmetric
+// about the x axis, so that rows counted from the top or from the bottom sample the same pixels.
+DSTRANS_SHARED(dst_rough_refraction,
+DST_FN float dst_phong_power_of_roughness(float r) {
+  if (isnan(r)) return 255.0f;
+  float r4 = r * r * r * r;
+  if (r4 <= 2.0f / 257.0f) return 255.0f;
+  float n = 2.0f / r4 - 2.0f;
+  return n < 1.0f ? 1.0f : n;
+}
+DST_FN float dst_roughness_of_phong_power(float n) {
+  if (isnan(n) || n >= 254.5f) return 0.0f;
+  return pow(2.0f / (max(n, 0.0f) + 2.0f), 0.25f);
+}
+DST_FN float dst_refraction_blur_pixels(float roughness, float z_t, float z_b, float focal, float limit) {
+  if (isnan(roughness) || isnan(limit) || limit <= 0.0f) return 0.0f;
+  float spread = roughness * roughness;
+  float px = focal * tan(spread < 1.0f ? spread : 1.0f) * (1.0f - z_t / z_b);
+  if (isnan(px) || px <= 0.0f) return 0.0f;
+  return px < limit ? px : limit;
+}
+DST_FN vec3 dst_refraction_blur_tap(int i) {
+  if (i < 0 || i > 14) return vec3(0.0f);
+  if (i == 0) return vec3(0.0f, 0.0f, 0.0625f);
+  if (i <= 6) {
+    float a = float(i - 1) * 1.04719755f;
+    return vec3(0.5f * cos(a), 0.5f * sin(a), 0.5f / 6.0f);
+  }
+  float b = (float(i - 7) + 0.5f) * 0.785398163f;
+  return vec3(cos(b), sin(b), 0.4375f / 8.0f);
 }
 )
 

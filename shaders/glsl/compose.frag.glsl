@@ -1,8 +1,57 @@
 // The compose pass (thesis 3.3). Without transparency, plain deferred shading of the one layer. With
 // DST_TRANSPARENCY, de-interlacing and the blend of Eq. 3.3 with specular and ambient light; with
 // DST_REFRACTION also refraction with the partner-row fallback and depth rejection. The technique says
-// where the other layer of a pixel lives (interlaced.glsl, peeled.glsl): dst_other_layer.
+// where the other layer of a pixel lives (interlaced.glsl, peeled.glsl): dst_other_layer. With
+// DST_ROUGH_REFRACTION the refracted sample is blurred by the glass's roughness (refraction.hpp).
 layout(location = 0) out vec4 colour;
+
+#ifdef DST_REFRACTION
+// What glass t shows at pixel q: q's sample, or the layer behind it where q holds glass too. A sample in
+// front of the glass would leak into it, so o and light_o (the glass's own background) stay then.
+void dst_refracted(ivec2 q, dst_surface t, inout dst_surface o, inout dst_light_sample light_o) {
+  dst_surface r = dst_gbuffer_read(q), r2 = r;
+  dst_light_sample light_r2 = dst_light_sample_zero();
+  if (dst_transparent(r.alpha)) dst_other_layer(q, r, r2, light_r2);  // the other layer only where it is needed
+  int from = dst_refraction_source(t.depth, r.alpha, r.depth, r2.alpha, r2.depth);
+  if (from != 0) {
+    o = from == 1 ? r : r2;
+    light_o = from == 1 ? dst_light_read(q) : light_r2;
+  }
+}
+#endif
+
+#ifdef DST_ROUGH_REFRACTION
+// The view depth of what pixel q shows at window depth `depth`.
+float dst_view_depth(ivec2 q, float depth) { return -(frame.view * vec4(dst_world_position(q, depth), 1.0f)).z; }
+
+// The projection's pixels per unit across at unit view depth: where a point one unit ahead of the camera
+// and one unit above its axis lands.
+float dst_focal_pixels() {
+  vec3 up = vec3(frame.view[0][1], frame.view[1][1], frame.view[2][1]);
+  vec3 ahead = -vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2]);
+  vec4 c = frame.view_proj * vec4(frame.camera_position.xyz + up + ahead, 1.0f);
+  return 0.5f * float(frame.size.y) * c.y / c.w;
+}
+
+// The lit colour glass t shows around pixel `moved`, whose sample lit is `lit`, blurred by t's roughness;
+// `behind` is the glass's own background, which a tap that would leak keeps.
+vec3 dst_rough_refracted(ivec2 p, ivec2 moved, vec3 lit, dst_surface t, dst_surface o, dst_surface behind,
+                         dst_light_sample light_behind, vec3 ambient) {
+  float radius = dst_refraction_blur_pixels(dst_roughness_of_phong_power(t.spec_power), dst_view_depth(p, t.depth),
+                                            dst_view_depth(moved, o.depth), dst_focal_pixels(), 0.0625f * float(frame.size.y));
+  if (radius < 0.5f) return lit;
+  vec3 sum = lit * dst_refraction_blur_tap(0).z;
+  for (int i = 1; i < 15; ++i) {
+    vec3 tap = dst_refraction_blur_tap(i);
+    ivec2 q = clamp(moved + ivec2(floor(vec2(tap.x, tap.y) * radius + 0.5f)), ivec2(0), frame.size.xy - 1);
+    dst_surface s = behind;
+    dst_light_sample light_s = light_behind;
+    dst_refracted(q, t, s, light_s);
+    sum += dst_shade(s, light_s, ambient) * tap.z;
+  }
+  return sum;
+}
+#endif
 
 void main() {
   ivec2 p = dst_pixel();
@@ -23,16 +72,15 @@ void main() {
     // The sample moved by the glass's screen-space normal, or the layer behind it when it holds glass
     // too; a sample in front of the glass would leak into it, so the background stays then.
     ivec2 moved = dst_refraction_pixel(p, frame.size.xy, mat3(frame.view) * t.normal, frame.params.x);
-    dst_surface r = dst_gbuffer_read(moved), r2 = r;
-    dst_light_sample light_r2 = dst_light_sample_zero();
-    if (dst_transparent(r.alpha)) dst_other_layer(moved, r, r2, light_r2);  // the other layer only where it is needed
-    int from = dst_refraction_source(t.depth, r.alpha, r.depth, r2.alpha, r2.depth);
-    if (from != 0) {
-      o = from == 1 ? r : r2;
-      light_o = from == 1 ? dst_light_read(moved) : light_r2;
-    }
+    dst_surface behind = o;
+    dst_light_sample light_behind = light_o;
+    dst_refracted(moved, t, o, light_o);
 #endif
-    colour = vec4(dst_compose(o, light_o, t, light_t, ambient), 1.0f);
+    vec3 lit_o = dst_shade(o, light_o, ambient);
+#ifdef DST_ROUGH_REFRACTION
+    lit_o = dst_rough_refracted(p, moved, lit_o, t, o, behind, light_behind, ambient);
+#endif
+    colour = vec4(dst_blend(lit_o, dst_shade(t, light_t, ambient), t.alpha), 1.0f);
     return;
   }
 #endif

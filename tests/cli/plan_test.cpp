@@ -88,6 +88,19 @@ TEST_CASE("plan --temporal on: the previous frame's targets and the compose swit
   CHECK_THAT(bad.out, Catch::Contains("--temporal must be on or off, not 'maybe'"));
 }
 
+TEST_CASE("plan --rough-refraction on: the compose switch where glass refracts, nothing more", "[cli][plan]") {
+  const plan_facts refractive = plan_of(ladder_scene(true, true, false)),
+                   rough = plan_of(ladder_scene(true, true, false), " --rough-refraction on");
+  CHECK(minus(rough.switches, refractive.switches) == std::set<std::string>{"compose: DST_ROUGH_REFRACTION"});
+  CHECK(rough.targets == refractive.targets);
+  // Glass that does not refract has no refracted sample to blur.
+  const plan_facts pane = plan_of(ladder_scene(true, false, false));
+  CHECK(plan_of(ladder_scene(true, false, false), " --rough-refraction on").switches == pane.switches);
+  const auto bad = run("plan " + ladder_scene(true, true, false) + " --rough-refraction blurry", "");
+  CHECK(bad.status == 2);
+  CHECK_THAT(bad.out, Catch::Contains("--rough-refraction must be on or off, not 'blurry'"));
+}
+
 TEST_CASE("plan --json lists a frame's passes in order, each light's among them", "[cli][plan]") {
   const auto r = run("plan " + ladder_scene(true, true, true) + " --json", "");
   REQUIRE(r.status == 0);

@@ -275,6 +275,7 @@ inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on
   std::vector<std::string> switches;
   for (effect e : {effect::transparency, effect::refraction})
     if (on.has(e)) switches.push_back(effect_switch(e));
+  if (rough_refraction(o, on)) switches.push_back("DST_ROUGH_REFRACTION");
   std::string other = "interlaced.glsl";
   const bool temporal = temporal_interlacing(o, on);
   if (o.method == technique::interlaced) {

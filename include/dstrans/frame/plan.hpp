@@ -62,6 +62,10 @@ struct options {
   bool temporal = false;
   int width = 320, height = 180;
   float refraction = 8.0f;      // strength in pixels; 0 turns refraction off
+  // Rough glass (deferred techniques, with refraction): the compose pass blurs the refracted sample by the
+  // glass's roughness, read back from its Phong exponent (refraction.hpp), at up to 15 samples a glass pixel.
+  // Off by default: dstrans's own materials choose their exponent for the highlight alone.
+  bool rough_refraction = false;
   // A fraction of the receiver's distance from the light, along the light's axis: the receiver is moved
   // that far towards the light before it is compared with the shadow map (in linear depth), which removes
   // self-shadowing ("acne") at the cost of light leaking under occluders that touch their receiver. A
@@ -124,6 +128,9 @@ struct frame_plan {
 frame_plan plan_of(const scene& s, const options& o);
 // Whether a frame with options `o` and effects `on` interlaces temporally (frame_plan::temporal).
 bool temporal_interlacing(const options& o, effects on);
+// Whether the compose pass of a frame with options `o` and effects `on` blurs refraction through rough glass
+// (options::rough_refraction: the switch DST_ROUGH_REFRACTION).
+bool rough_refraction(const options& o, effects on);
 // Whether the options' images (the frame and the shadow map) fit a device whose images and viewports are
 // at most `largest` texels a side: checked by both renderers before they allocate anything.
 result<bool> fits_device(const options& o, int largest);
@@ -385,6 +392,10 @@ inline bool temporal_interlacing(const options& o, effects on) {
   return o.temporal && o.method == technique::interlaced && on.has(effect::transparency);
 }
 
+inline bool rough_refraction(const options& o, effects on) {
+  return o.rough_refraction && !is_forward(o.method) && on.has(effect::refraction);
+}
+
 inline frame_plan plan_of(const scene& s, const options& o) {
   frame_plan p{};
   effects e = effects_of(scene_features(s));
@@ -426,6 +437,9 @@ inline frame_plan plan_of(const scene& s, const options& o) {
       }
     p.pipeline.targets.insert(p.pipeline.targets.end(), history.begin(), history.end());
   }
+  if (rough_refraction(o, p.on))
+    for (planned_pass& pass : p.pipeline.passes)
+      if (pass.name == "compose") pass.switches.push_back("DST_ROUGH_REFRACTION");
   // The scene's post-processing chain, on the deferred techniques (it reads the G-buffer): its passes and
   // targets join the plan, each target the final image's format.
   if (!p.forward) {
