@@ -2,11 +2,13 @@
 // time, and the pass shaders' switches resolved out of the GLSL text.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <set>
 
 #include <dstrans/glsl.hpp>
+#include <dstrans/frame/plan.hpp>
 #include <dstrans/pipeline.hpp>
 
 #include "effect_scenes.hpp"
@@ -98,6 +100,36 @@ TEST_CASE("the plans of neighbouring rungs differ by exactly the added effect's 
   CHECK(minus(switches_of(textured), switches_of(smoke)) == std::set<std::string>{"gbuffer: DST_TEXTURES", "shadow: DST_TEXTURES"});
   for (const pipeline_plan* p : {&nothing, &shadows, &glass, &refractive, &seen, &smoke})
     CHECK(minus(switches_of(*p), switches_of(textured)).empty());
+}
+
+TEST_CASE("the shadow pass samples textures only where a texture can change a shadow", "[pipeline][textures]") {
+  auto shadow_switches = [](const scene& s, const render::options& o = {}) {
+    const render::frame_plan p = render::plan_of(s, o);
+    REQUIRE(p.pipeline.pass("shadow"));
+    const std::vector<std::string>& sw = p.pipeline.pass("shadow")->switches;
+    CHECK(p.textured_shadows == (std::find(sw.begin(), sw.end(), "DST_TEXTURES") != sw.end()));
+    CHECK(p.shadow_effects() == (p.textured_shadows ? p.on : p.on.without(effect::textures)));
+    return p.textured_shadows;
+  };
+  // The rung's textured floor is opaque: its shadow is its depth, so only the G-buffer pass samples it.
+  scene s = effect_scene(rung::textured);
+  CHECK_FALSE(render::textured_shadows(s));
+  CHECK_FALSE(shadow_switches(s));
+  CHECK(render::plan_of(s, {}).on.has(effect::textures));
+  render::options forced;
+  forced.force = effects::all();
+  CHECK(shadow_switches(s, forced));
+  // Textured glass colours the light through it; an alpha-tested texture cuts the occluder out.
+  scene glass = s;
+  glass.materials[2].texture = 0;
+  CHECK(shadow_switches(glass));
+  scene tested = s;
+  tested.materials[1].alpha_cutoff = 0.5f;
+  CHECK(shadow_switches(tested));
+  // A textured material no object uses changes no shadow.
+  scene unused = s;
+  unused.materials.push_back(glass.materials[2]);
+  CHECK_FALSE(render::textured_shadows(unused));
 }
 
 TEST_CASE("the run-time plan of a set is the compile-time plan of that set", "[pipeline]") {

@@ -168,7 +168,7 @@ result<bool> renderer::impl::make_programs() {
         made.push_back(keep(light_progs[int(k)][vol], program(light_pass(sh, k, vol == 1, o), std::string("light pass") + lookup_label(k) +
                                                                                                   (vol ? " volume" : " fullscreen"))));
   }
-  if (mode != shadow_mode::off) made.push_back(keep(shadow_prog, program(shadow_pass(sh, mode, plan.on), "shadow pass")));
+  if (mode != shadow_mode::off) made.push_back(keep(shadow_prog, program(shadow_pass(sh, mode, plan.shadow_effects()), "shadow pass")));
   if (plan.on.has(effect::many_layers) && !plan.forward) {
     made.push_back(keep(capture_prog, program(capture_pass(sh, mode, o), "capture pass")));
     made.push_back(keep(resolve_prog, program(resolve_pass(sh, mode, o), "resolve pass")));

@@ -310,7 +310,8 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
     made.push_back(graphics(gbuffer[k], gbuffer_pass(sh, plan.peeling ? (k ? layer::second : layer::first) : layer::interlaced, plan.on, o),
                             gbuffer_formats, "gbuffer pass", scene_state));
   if (mode != shadow_mode::off)
-    made.push_back(graphics(shadow, shadow_pass(sh, mode, plan.on), formats_of(shadow_targets(mode)), "shadow pass", scene_state));
+    made.push_back(graphics(shadow, shadow_pass(sh, mode, plan.shadow_effects()), formats_of(shadow_targets(mode)), "shadow pass",
+                            plan.textured_shadows ? scene_state : without_texture_coordinates(scene_state)));
   for (shadow_mode k : all_lookups)
     for (int vol = 0; vol < 2 && !plan.forward && plan.uses(k); ++vol) {
       // Volumes are drawn with their back faces, depth clamped (dstrans/frame/plan.hpp, volume).

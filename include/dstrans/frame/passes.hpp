@@ -309,7 +309,7 @@ inline result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shade
   };
   if (auto ok = add("gbuffer pass", gbuffer_pass(shaders, layer::interlaced, plan.on, o)); !ok) return failure{ok.error()};
   if (plan.shadows != shadow_mode::off)
-    if (auto ok = add("shadow pass", shadow_pass(shaders, plan.shadows, plan.on)); !ok) return failure{ok.error()};
+    if (auto ok = add("shadow pass", shadow_pass(shaders, plan.shadows, plan.shadow_effects())); !ok) return failure{ok.error()};
   for (shadow_mode k : all_lookups)
     for (int vol = 0; vol < 2; ++vol) {
       bool used = false;

@@ -115,10 +115,15 @@ struct frame_plan {
   std::vector<shadow_mode> lookups;  // per light: no shadow, the plain lookup, or Eq. 3.1's
   bool forward, forward_depth, peeling;
   bool temporal;           // temporal interlacing: a second G-buffer holds the previous frame's
+  // Whether the shadow pass samples the materials' textures (render::textured_shadows, or forced). Where it
+  // does not, it reads no texture coordinates: it is built for shadow_effects(), `on` less effect::textures.
+  bool textured_shadows;
   int layers;              // G-buffers (and light buffers) a frame draws: 0 forward, 2 peeling, 1 interlaced
   post_plan post;          // the scene's post-processing chain (deferred techniques only; in pipeline too)
   // The G-buffers (and light buffers) kept: those drawn, and with temporal interlacing the previous frame's.
   int kept_layers() const { return temporal ? 2 : layers; }
+  // The effects the shadow pass is built for.
+  effects shadow_effects() const { return textured_shadows ? on : on.without(effect::textures); }
   bool uses(shadow_mode lookup) const {
     for (shadow_mode m : lookups)
       if (m == lookup) return true;
@@ -128,6 +133,10 @@ struct frame_plan {
 frame_plan plan_of(const scene& s, const options& o);
 // Whether a frame with options `o` and effects `on` interlaces temporally (frame_plan::temporal).
 bool temporal_interlacing(const options& o, effects on);
+// Whether a texture can change a shadow of `s`: an object's material is textured and glass (its texels colour
+// the light through it) or alpha-tested (they cut the occluder out). An opaque occluder's shadow is its
+// depth, whatever its texels, so the shadow pass need not read them for it.
+bool textured_shadows(const scene& s);
 // Whether the compose pass of a frame with options `o` and effects `on` blurs refraction through rough glass
 // (options::rough_refraction: the switch DST_ROUGH_REFRACTION).
 bool rough_refraction(const options& o, effects on);
@@ -392,6 +401,15 @@ inline bool temporal_interlacing(const options& o, effects on) {
   return o.temporal && o.method == technique::interlaced && on.has(effect::transparency);
 }
 
+inline bool textured_shadows(const scene& s) {
+  for (const object& obj : s.objects) {
+    if (obj.material >= s.materials.size()) continue;
+    const material& m = s.materials[obj.material];
+    if (m.textured() && (m.transparent() || m.alpha_cutoff > 0.0f)) return true;
+  }
+  return false;
+}
+
 inline bool rough_refraction(const options& o, effects on) {
   return o.rough_refraction && !is_forward(o.method) && on.has(effect::refraction);
 }
@@ -437,6 +455,13 @@ inline frame_plan plan_of(const scene& s, const options& o) {
       }
     p.pipeline.targets.insert(p.pipeline.targets.end(), history.begin(), history.end());
   }
+  // Forced, the textures reach the shadow pass too (the full pipeline, for comparisons).
+  p.textured_shadows = p.on.has(effect::textures) && (textured_shadows(s) || o.force.has(effect::textures));
+  if (!p.textured_shadows)
+    for (planned_pass& pass : p.pipeline.passes)
+      if (pass.name == "shadow")
+        pass.switches.erase(std::remove(pass.switches.begin(), pass.switches.end(), effect_switch(effect::textures)),
+                            pass.switches.end());
   if (rough_refraction(o, p.on))
     for (planned_pass& pass : p.pipeline.passes)
       if (pass.name == "compose") pass.switches.push_back("DST_ROUGH_REFRACTION");
