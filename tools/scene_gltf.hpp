@@ -16,13 +16,15 @@
 // - Materials: the base colour factor is the diffuse colour. alphaMode OPAQUE gives alpha 1, BLEND the
 //   factor's alpha, MASK alpha 1 where the factor's alpha reaches alphaCutoff and no object where it does
 //   not (the surface is cut away everywhere). KHR_materials_transmission makes glass: alpha is (1 -
-//   transmission) times the alpha above, refractive unless KHR_materials_ior sets ior 1 (the refraction's
-//   strength is the command's, not the ior's); KHR_materials_volume tints the glass by Beer's law over its
+//   transmission) times the alpha above, refractive unless KHR_materials_ior sets ior 1. Approximated: the
+//   refraction's strength is the command's, not the ior's, and the G-buffer keeps no per-pixel flag for it,
+//   so once one material refracts all glass does; KHR_materials_volume tints the glass by Beer's law over its
 //   thickness, attenuationColor ^ (thicknessFactor / attenuationDistance), in the shadow and the compose.
 //   Roughness r gives the Phong exponent 2 / r^4 - 2 (within 1-255, the Blinn-Phong match of GGX's width;
 //   refraction.hpp's dst_phong_power_of_roughness), from which `--rough-refraction on` reads r back to blur
-//   what rough glass refracts (r up to 0.297 reads back as clear), and metallic m the specular intensity 0.04 + 0.96 m times (1 - r); metals keep their base colour as
-//   diffuse, since dstrans has no environment light.
+//   what rough glass refracts (r up to 0.297 reads back as clear), and metallic m the specular intensity
+//   0.04 + 0.96 m times (1 - r); metals keep their base colour as diffuse, since dstrans has no environment
+//   light.
 // - baseColorTexture: its image (PNG or JPEG, decoded only if a drawn material samples it, held to the
 //   budget) becomes a scene texture, read at the primitive's TEXCOORD_<texCoord> (floats or normalized
 //   unsigned integers; required where the material samples it), with its sampler's wrap modes. The
