@@ -24,21 +24,12 @@ void dst_refracted(ivec2 q, dst_surface t, inout dst_surface o, inout dst_light_
 // The view depth of what pixel q shows at window depth `depth`.
 float dst_view_depth(ivec2 q, float depth) { return -(frame.view * vec4(dst_world_position(q, depth), 1.0f)).z; }
 
-// The projection's pixels per unit across at unit view depth: where a point one unit ahead of the camera
-// and one unit above its axis lands.
-float dst_focal_pixels() {
-  vec3 up = vec3(frame.view[0][1], frame.view[1][1], frame.view[2][1]);
-  vec3 ahead = -vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2]);
-  vec4 c = frame.view_proj * vec4(frame.camera_position.xyz + up + ahead, 1.0f);
-  return 0.5f * float(frame.size.y) * c.y / c.w;
-}
-
 // The lit colour glass t shows around pixel `moved`, whose sample lit is `lit`, blurred by t's roughness;
 // `behind` is the glass's own background, which a tap that would leak keeps.
 vec3 dst_rough_refracted(ivec2 p, ivec2 moved, vec3 lit, dst_surface t, dst_surface o, dst_surface behind,
                          dst_light_sample light_behind, vec3 ambient) {
   float radius = dst_refraction_blur_pixels(dst_roughness_of_phong_power(t.spec_power), dst_view_depth(p, t.depth),
-                                            dst_view_depth(moved, o.depth), dst_focal_pixels(), 0.0625f * float(frame.size.y));
+                                            dst_view_depth(moved, o.depth), frame.camera_position.w, 0.0625f * float(frame.size.y));
   if (radius < 0.5f) return lit;
   vec3 sum = lit * dst_refraction_blur_tap(0).z;
   for (int i = 1; i < 15; ++i) {

@@ -16,7 +16,7 @@ struct dst_frame_data {
   mat4 view_proj;       // world to clip of the camera (or of the light, in the shadow pass)
   mat4 inv_view_proj;   // clip to world of the camera
   mat4 view;            // world to view of the camera
-  vec4 camera_position;
+  vec4 camera_position; // xyz; w: the projection's pixels across a unit at unit view depth (rough glass's blur)
   vec4 ambient;
   ivec4 size;           // xy: the image; zw: the shadow map
   vec4 params;          // x: refraction strength in pixels, y: shadow bias (a fraction of the receiver's

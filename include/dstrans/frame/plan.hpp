@@ -633,9 +633,10 @@ inline frame_block camera_frame(const scene& s, const options& o) { return camer
 inline frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o) {
   frame_block f{};
   f.view = c.view();
-  f.view_proj = c.projection(float(o.width) / float(o.height)) * f.view;
+  const glm::mat4 projection = c.projection(float(o.width) / float(o.height));
+  f.view_proj = projection * f.view;
   f.inv_view_proj = glm::inverse(f.view_proj);
-  f.camera_position = glm::vec4(c.position, 1.0f);
+  f.camera_position = glm::vec4(c.position, 0.5f * float(o.height) * projection[1][1]);
   f.ambient = glm::vec4(ambient, 0.0f);
   f.size = {o.width, o.height, o.shadow_size, o.shadow_size};
   f.params = {o.refraction, o.shadow_bias, -1.0f, float(o.kbuffer_k)};
