@@ -85,8 +85,8 @@ demo: configure
 	@echo "Rendering it on Vulkan (lavapipe) into $(OUT)/vk/"
 	@$(BUILD)/tools/dstrans render examples/scenes/glass_room.json --backend vk --out $(OUT)/vk --width 960 --height 540
 	@echo "Rendering examples/scenes/glass_shelf.gltf (glTF glass) on OpenGL and Vulkan into $(OUT)/glass_shelf/"
-	@$(BUILD)/tools/dstrans render examples/scenes/glass_shelf.gltf --backend gl --out $(OUT)/glass_shelf --width 960 --height 540
-	@$(BUILD)/tools/dstrans render examples/scenes/glass_shelf.gltf --backend vk --out $(OUT)/glass_shelf/vk --width 960 --height 540
+	@$(BUILD)/tools/dstrans render examples/scenes/glass_shelf.gltf --backend gl --out $(OUT)/glass_shelf --width 960 --height 540 --rough-refraction on
+	@$(BUILD)/tools/dstrans render examples/scenes/glass_shelf.gltf --backend vk --out $(OUT)/glass_shelf/vk --width 960 --height 540 --rough-refraction on
 	@echo "Writing the generated GLSL into $(OUT)/glsl/ and checking it with glslangValidator"
 	@mkdir -p $(OUT)/glsl
 	@$(BUILD)/tools/dstrans gen gbuffer thesis > $(OUT)/glsl/gbuffer_thesis.glsl
