@@ -76,10 +76,11 @@ DST_FN bool dst_refraction_accepted_by_mask(float alpha_moved, float alpha_partn
 // apart) reads back as clear glass. The transmitted light leaves within GGX's width r^2 (radians) of the
 // refracted ray, so it spreads over (z_b - z_t) tan(r^2) at a surface z_b behind glass at z_t (view
 // depths), focal (z_b - z_t) tan(r^2) / z_b pixels across, focal being the projection's pixels per unit at
-// unit depth (the spread is taken as at most 1 radian, the radius as at most `limit` pixels; a surface not
-// behind the glass, a NaN or a limit not above 0 gives 0). The blur is a uniform disc of that radius in 15 taps: a centre, a ring of 6 at half the radius
-// and a ring of 8 at the radius, each tap weighted by the area it stands for, and each ring symmetric
-// about the x axis, so that rows counted from the top or from the bottom sample the same pixels.
+// unit depth. The spread is taken as at most 1 radian and the radius as at most `limit` pixels; a surface
+// not behind the glass, a NaN or a limit not above 0 gives 0. The blur is a uniform disc of that radius in
+// 15 taps: a centre, a ring of 6 at half the radius and a ring of 8 at the radius, each tap weighted by the
+// area it stands for, and each ring symmetric about the x axis, so that rows counted from the top or from
+// the bottom sample the same pixels.
 DSTRANS_SHARED(dst_rough_refraction,
 DST_FN float dst_phong_power_of_roughness(float r) {
   if (isnan(r)) return 255.0f;

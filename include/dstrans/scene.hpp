@@ -53,8 +53,8 @@ struct material {
   // An index into scene::textures (-1: none): in the G-buffer and forward passes (and the shadow pass, where
   // the material is glass or alpha-tested: render::textured_shadows) its texel at the fragment's texture
   // coordinates multiplies the diffuse colour, and the alpha where the material is transparent or
-  // alpha-tested. Texels are taken as stored (dstrans's colours are display values, as its
-  // factors are): no sRGB decoding. Hair and particles take the factors alone.
+  // alpha-tested. Texels are taken as stored (dstrans's colours are display values, as its factors are):
+  // no sRGB decoding. Hair and particles take the factors alone.
   int texture = -1;
   // Above 0: alpha-tested (glTF's MASK): where the alpha (texel times factor) is below it, no fragment;
   // elsewhere the surface is opaque.

@@ -63,8 +63,10 @@ void main() {
     // The sample moved by the glass's screen-space normal, or the layer behind it when it holds glass
     // too; a sample in front of the glass would leak into it, so the background stays then.
     ivec2 moved = dst_refraction_pixel(p, frame.size.xy, mat3(frame.view) * t.normal, frame.params.x);
+#ifdef DST_ROUGH_REFRACTION
     dst_surface behind = o;
     dst_light_sample light_behind = light_o;
+#endif
     dst_refracted(moved, t, o, light_o);
 #endif
     vec3 lit_o = dst_shade(o, light_o, ambient);
