@@ -110,6 +110,27 @@ TEST_CASE("generated interlace predicates compile for GL and Vulkan", "[glsl][sp
   check(interlace::none{});
 }
 
+TEST_CASE("two predicates in one shader: the shadow maps' under the generic names, the G-buffer's under its own",
+          "[glsl][spirv]") {
+  for (spirv::api a : apis) {
+    glsl::source src;
+    glsl::add_interlace<interlace::rows>(src);
+    glsl::add_interlace<interlace::checker>(src, "dst_gbuffer_interlace");
+    glsl::add_interlace<interlace::rows>(src, "dst_other");  // the same predicate again: its formulas once
+    src.add("layout(location = 0) out vec4 o;\n"
+            "void main() {\n"
+            "  ivec2 p = ivec2(gl_FragCoord.xy), size = ivec2(320, 181);\n"
+            "  if (!dst_interlace_keep(p, size) || !dst_gbuffer_interlace_keep(p, size) || !dst_other_keep(p, size)) discard;\n"
+            "  o = vec4(vec2(dst_interlace_partner(p, size)), vec2(dst_gbuffer_interlace_partner(p, size)));\n"
+            "}\n",
+            __FILE__, __LINE__);
+    INFO(api_name(a));
+    CHECK(src.str().find("dst_gbuffer_interlace_partner(ivec2 pixel, ivec2 size) { return dst_checker_partner(pixel, size); }") !=
+          std::string::npos);
+    CHECK(spirv::compile(src, spirv::stage::fragment, a));
+  }
+}
+
 TEST_CASE("pixels counted from the bottom row reach the predicates and the refraction turned over", "[glsl][spirv]") {
   // The C++ of the turn: the bottom row of a 181-row image is row 180 from the top, and back.
   CHECK(shader::dst_flip_rows(glm::ivec2(3, 0), glm::ivec2(320, 181)) == glm::ivec2(3, 180));

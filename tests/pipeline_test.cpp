@@ -90,11 +90,13 @@ TEST_CASE("the plans of neighbouring rungs differ by exactly the added effect's 
   CHECK(minus(targets_of(seen), targets_of(refractive)) == std::set<std::string>{"shadow.colour"});
   CHECK(minus(switches_of(seen), switches_of(refractive)) ==
         std::set<std::string>{"shadow: DST_TRANSPARENT_SHADOWS", "light: DST_TRANSPARENT_SHADOWS"});
-  // Smoke: the light volumes' atlas (not screen-sized), the bake and the particle pass.
-  CHECK(minus(targets_of(smoke), targets_of(seen)) == std::set<std::string>{"volume.atlas"});
+  // Smoke: the light volumes' atlas (not screen-sized), the bake and the particle pass; beside the pane, the
+  // two glass layers the particles draw into and the compose lays around the glass (two RGBA16F targets).
+  CHECK(minus(targets_of(smoke), targets_of(seen)) == std::set<std::string>{"volume.atlas", "glass.behind", "glass.front"});
   CHECK(minus(switches_of(smoke), switches_of(seen)) ==
-        std::set<std::string>{"bake: DST_LIGHT_VOLUMES", "particles: DST_LIGHT_VOLUMES"});
-  CHECK(smoke.bytes_per_pixel == seen.bytes_per_pixel);
+        std::set<std::string>{"bake: DST_LIGHT_VOLUMES", "particles: DST_LIGHT_VOLUMES", "particles: DST_AROUND_GLASS",
+                              "compose: DST_AROUND_GLASS"});
+  CHECK(smoke.bytes_per_pixel == seen.bytes_per_pixel + 16);
   // Textures: texture coordinates and the texel in the passes that draw the scene's surfaces, no target.
   CHECK(targets_of(textured) == targets_of(smoke));
   CHECK(minus(switches_of(textured), switches_of(smoke)) == std::set<std::string>{"gbuffer: DST_TEXTURES", "shadow: DST_TEXTURES"});

@@ -1509,6 +1509,158 @@ TEST_CASE("hair on GL and Vulkan: the same fragments, the same mean colour", "[r
   CHECK(std::abs(mg - mv) / double(g->final_image.rgba.size()) < 0.5);
 }
 
+// Hair or smoke between a wall and a glass pane, the pane in front of it or behind it. Wall and pane
+// reflect no red and have no highlight, so over the pane a pixel's red is the subject's alone: behind the
+// glass the blend of Eq. 3.3 keeps (1 - alpha) of it, in front of the glass all of it.
+enum class subject { none, hair, smoke };
+scene glass_around(subject what, bool pane, bool pane_in_front) {
+  scene s;
+  s.view.position = {0.0f, 1.0f, 4.0f};
+  s.view.target = {0.0f, 1.0f, 0.0f};
+  s.ambient = glm::vec3(0.1f);
+  s.materials.push_back({glm::vec3(0.0f, 0.5f, 0.6f), 1.0f, 0.0f, 16.0f, false});   // wall
+  s.materials.push_back({glm::vec3(0.0f, 0.3f, 1.0f), 0.5f, 0.0f, 16.0f, false});   // blue glass
+  material hair{glm::vec3(0.8f, 0.5f, 0.3f), 0.3f, 0.0f, 16.0f, false};
+  hair.hair = true;
+  s.materials.push_back(hair);
+  s.materials.push_back({glm::vec3(0.9f, 0.8f, 0.7f), 0.5f, 0.0f, 16.0f, false});   // smoke
+  s.objects.push_back({shape_box({8.0f, 6.0f, 0.1f}), glm::translate(glm::mat4(1.0f), {0.0f, 1.0f, -1.5f}), 0});
+  if (pane) s.objects.push_back({shape_pane({2.4f, 1.6f}), glm::translate(glm::mat4(1.0f), {0.0f, 1.0f, pane_in_front ? 1.0f : -1.0f}), 1});
+  if (what == subject::hair)
+    s.objects.push_back({shape_hair(0.35f, 3000, 0.7f, 0.012f, 6, 7), glm::translate(glm::mat4(1.0f), {0.0f, 1.2f, 0.0f}), 2});
+  if (what == subject::smoke) {
+    particle_system smoke;
+    smoke.material = 3;
+    smoke.base = {0.0f, 0.3f, 0.0f};
+    smoke.radius = 0.4f;
+    smoke.height = 1.3f;
+    smoke.size = 0.3f;
+    smoke.count = 80;
+    s.particles.push_back(smoke);
+  }
+  light sun;
+  sun.direction = glm::normalize(glm::vec3(0.3f, -0.6f, -1.0f));
+  sun.intensity = 0.8f;
+  s.lights = {sun};
+  return s;
+}
+
+// The pixels where `a` and `b` differ by more than 4 codes in some channel, and all pixels within
+// `margin` of each do too: the interior of what one image has and the other has not.
+std::vector<glm::ivec2> inside(const render::image& a, const render::image& b, int margin) {
+  auto differs = [&](int x, int y) {
+    if (x < 0 || y < 0 || x >= a.width || y >= a.height) return false;
+    const std::size_t i = 4 * std::size_t(y * a.width + x);
+    for (std::size_t c = 0; c < 3; ++c)
+      if (std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])) > 4) return true;
+    return false;
+  };
+  std::vector<glm::ivec2> out;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      bool all = true;
+      for (int dy = -margin; dy <= margin && all; ++dy)
+        for (int dx = -margin; dx <= margin && all; ++dx) all = differs(x + dx, y + dy);
+      if (all) out.emplace_back(x, y);
+    }
+  return out;
+}
+
+int channel(const render::image& img, glm::ivec2 p, int c) { return img.rgba[4 * std::size_t(p.y * img.width + p.x) + std::size_t(c)]; }
+
+// How much the rows alternate over `pixels`: the mean of |2 I(y) - I(y - 1) - I(y + 1)| over the channels.
+double row_alternation(const render::image& img, const std::vector<glm::ivec2>& pixels) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const glm::ivec2& p : pixels) {
+    if (p.y < 1 || p.y + 1 >= img.height) continue;
+    for (int c = 0; c < 3; ++c)
+      sum += std::abs(2 * channel(img, p, c) - channel(img, p + glm::ivec2(0, -1), c) - channel(img, p + glm::ivec2(0, 1), c));
+    n += 3;
+  }
+  return n ? sum / double(n) : 0.0;
+}
+
+// How image `x` keeps `share` of the red of image `alone` over `pixels`: at the pixels where `alone` shows
+// the subject (red of 8 and up), their count and the mean of |red_x - share red_alone|; and the row
+// alternation of that residual over all of `pixels` (what a striped subject would show).
+struct red_share {
+  std::size_t subject = 0;
+  double off = 0.0, alternation = 0.0;
+};
+red_share red_against(const render::image& alone, const render::image& x, const std::vector<glm::ivec2>& pixels, double share) {
+  auto residual = [&](glm::ivec2 p) { return double(channel(x, p, 0)) - share * double(channel(alone, p, 0)); };
+  red_share out;
+  std::size_t rows = 0;
+  for (const glm::ivec2& p : pixels) {
+    if (channel(alone, p, 0) >= 8) {
+      ++out.subject;
+      out.off += std::abs(residual(p));
+    }
+    if (p.y < 1 || p.y + 1 >= alone.height) continue;
+    out.alternation += std::abs(2.0 * residual(p) - residual(p + glm::ivec2(0, -1)) - residual(p + glm::ivec2(0, 1)));
+    ++rows;
+  }
+  if (out.subject) out.off /= double(out.subject);
+  if (rows) out.alternation /= double(rows);
+  return out;
+}
+
+TEST_CASE("hair and smoke behind a pane are tinted by it, in front of it they are not, and never striped",
+          "[render][glass_layers][kbuffer][light_volume]") {
+  options o = small(160, 90);
+  o.shadows = render::shadow_mode::off;
+  for (backend b : backends)
+    for (render::technique t : {render::technique::interlaced, render::technique::peeling})
+      for (subject what : {subject::hair, subject::smoke}) {
+        o.method = t;
+        INFO(name(b) << ", " << render::technique_name(t) << ", " << (what == subject::hair ? "hair" : "smoke"));
+        auto alone = draw(b, glass_around(what, false, false), o);
+        if (!alone) break;
+        auto behind = draw(b, glass_around(what, true, true), o);
+        auto before = draw(b, glass_around(what, true, false), o);
+        auto pane = draw(b, glass_around(subject::none, true, true), o), pane_behind = draw(b, glass_around(subject::none, true, false), o),
+             wall = draw(b, glass_around(subject::none, false, false), o);
+        REQUIRE((behind && before && pane && pane_behind && wall));
+        CHECK(render::plan_of(glass_around(what, true, true), o).around_glass);
+        // Over the pane in front of the subject (two pixels in from its edge) the subject's red halved, over
+        // the pane behind it the subject's red whole, within a code and a half on average (two quantised
+        // images and the blend's rounding), and no alternation from row to row.
+        const std::vector<glm::ivec2> front_pane = inside(pane->final_image, wall->final_image, 2),
+                                      back_pane = inside(pane_behind->final_image, wall->final_image, 2);
+        const red_share through = red_against(alone->final_image, behind->final_image, front_pane, 0.5),
+                        over = red_against(alone->final_image, before->final_image, back_pane, 1.0);
+        INFO("behind the glass: " << through.subject << " pixels, off by " << through.off << ", residual alternation " << through.alternation);
+        INFO("in front of the glass: " << over.subject << " pixels, off by " << over.off << ", residual alternation " << over.alternation);
+        REQUIRE(through.subject > front_pane.size() / 10);
+        REQUIRE(over.subject > back_pane.size() / 10);
+        CHECK(through.off < 1.5);
+        CHECK(over.off < 1.5);
+        CHECK(through.alternation < 1.5);
+        CHECK(over.alternation < 1.5);
+        // Smoke is smooth: the pane's rows alternate no more with it behind than without it.
+        if (what == subject::smoke) {
+          const double stripes = row_alternation(behind->final_image, front_pane), bare = row_alternation(pane->final_image, front_pane);
+          INFO("row alternation over the pane: " << stripes << " with the smoke behind it, " << bare << " without");
+          CHECK(stripes < bare + 1.0);
+        }
+      }
+}
+
+TEST_CASE("hair and smoke around panes: GL and Vulkan draw the same frame", "[render][glass_layers][gl][vk]") {
+  options o = small(160, 90);
+  std::vector<scene> scenes{example("hair_panes.json"), example("glass_room_smoke.json")};
+  for (subject what : {subject::hair, subject::smoke})
+    for (bool in_front : {true, false}) scenes.push_back(glass_around(what, true, in_front));
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    INFO("scene " << i);
+    auto g = draw(backend::gl, scenes[i], o);
+    auto v = draw(backend::vk, scenes[i], o);
+    if (!g || !v) return;
+    CHECK(rmse(g->final_image, v->final_image) < 1.0);
+  }
+}
+
 // The light-volume bake on the GPU gives the CPU's cells, for a grid whose sizes are not
 // multiples of the work group's 4, baked in two dispatches that add up (as unshadowed lights and a
 // shadowed spot light would be).
@@ -2309,13 +2461,14 @@ TEST_CASE("the compact layout's plan: 12 bytes a pixel with the light buffer, de
   options o = small(160, 90);
   o.layout = render::gbuffer_layout::compact;
   const pipeline_plan p = render::plan_of(s, o).pipeline;
-  CHECK(p.bytes_per_pixel == 12);
+  // The layout's 12, and the glass layers the smoke beside the rung's pane is drawn into (two RGBA16F).
+  CHECK(p.bytes_per_pixel == 12 + 16);
   CHECK(p.target("gbuffer.RT1"));
   CHECK_FALSE(p.target("gbuffer.RT2"));
   REQUIRE(p.pass("particles"));
   CHECK(p.pass("particles")->reads == std::vector<std::string>{"volume.atlas", "gbuffer.depth"});
   o.layout = render::gbuffer_layout::thesis;
-  CHECK(render::plan_of(s, o).pipeline.bytes_per_pixel == 20);
+  CHECK(render::plan_of(s, o).pipeline.bytes_per_pixel == 20 + 16);
 }
 
 // Forcing shadows on smoke that no light shadows changes nothing, the forward reference included (its
@@ -2678,9 +2831,13 @@ TEST_CASE("a pass's limit: the bytes its resources hold, half read and half writ
   REQUIRE(spots == 3);
   const std::size_t map = 8u * std::size_t(reference.shadow_size) * std::size_t(reference.shadow_size);
   CHECK(cli::resource_bytes("shadow layers", particles, reference) == spots * map);
-  const std::size_t frame_bytes = cli::resource_bytes("frame", particles, reference), gbuffer_bytes = cli::resource_bytes("gbuffer", particles, reference);
+  // Beside smoke.json's pane the particles draw into the glass layers (two RGBA16F targets) instead of the frame.
+  REQUIRE(particles.around_glass);
+  const std::size_t layers_bytes = cli::resource_bytes("glass layers", particles, reference),
+                    gbuffer_bytes = cli::resource_bytes("gbuffer", particles, reference);
+  CHECK(layers_bytes == 16u * std::size_t(reference.width) * std::size_t(reference.height));
   CHECK(cli::timer_bytes(render::schedule_of(smoke, particles, reference), particles, reference).at("particles") ==
-        spots * (map + map) / 2 + (gbuffer_bytes + spots * map + 2u * frame_bytes) / 2);
+        spots * (map + map) / 2 + (gbuffer_bytes + spots * map + layers_bytes) / 2);
 
   int calls = 0;
   cli::limit_meter meter([&](std::size_t b) -> result<double> {

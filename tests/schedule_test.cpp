@@ -92,6 +92,51 @@ TEST_CASE("a schedule has no pass for an effect the frame does not draw", "[sche
   CHECK(count(forward, "blend") == 1);
 }
 
+TEST_CASE("hair and particles are drawn around the glass only in a deferred frame that has glass", "[schedule][glass_layers]") {
+  const scene hair = example("hair.json"), smoke = example("smoke.json"), hair_and_panes = example("hair_panes.json");
+  auto index_of = [](const frame_schedule& s, const std::string& timer) {
+    for (std::size_t i = 0; i < s.passes.size(); ++i)
+      if (s.passes[i].timer == timer) return int(i);
+    return -1;
+  };
+  for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward}) {
+    render::options o;
+    o.method = t;
+    INFO(render::technique_name(t));
+    // Hair alone: over the composed frame, nothing more made.
+    const render::frame_plan alone = render::plan_of(hair, o);
+    CHECK_FALSE(alone.around_glass);
+    CHECK(alone.pipeline.target("glass.behind") == nullptr);
+    for (const scheduled_pass& p : render::schedule_of(hair, alone, o).passes)
+      CHECK(std::find(p.writes.begin(), p.writes.end(), "glass layers") == p.writes.end());
+    const scene* around[] = {&hair_and_panes, &smoke};
+    for (const scene* s : around) {
+      const render::frame_plan p = render::plan_of(*s, o);
+      CHECK(p.around_glass == (t != render::technique::forward));
+      if (!p.around_glass) continue;
+      const frame_schedule sched = render::schedule_of(*s, p, o);
+      const int compose = index_of(sched, "compose"), layered = index_of(sched, s == &smoke ? "particles" : "resolve");
+      REQUIRE(compose >= 0);
+      REQUIRE(layered >= 0);
+      // Drawn before the compose into the glass layers, which the first such pass clears to nothing drawn.
+      CHECK(layered < compose);
+      CHECK(sched.passes[std::size_t(layered)].writes == std::vector<std::string>{"glass layers"});
+      CHECK(sched.passes[std::size_t(layered)].clears == std::vector<glm::vec4>(2, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)));
+      const std::vector<std::string>& reads = sched.passes[std::size_t(compose)].reads;
+      CHECK(std::find(reads.begin(), reads.end(), "glass layers") != reads.end());
+      // Two RGBA16F targets, as the renderers make them, counted in the frame's bytes a pixel.
+      const std::vector<target_desc> made = render::glass_layer_targets();
+      REQUIRE(made.size() == 2);
+      for (const char* name : {"glass.behind", "glass.front"}) {
+        const planned_target* target = p.pipeline.target(name);
+        REQUIRE(target);
+        CHECK(target->bytes_per_pixel == info(made[target->name == "glass.front" ? 1 : 0].fmt).bytes_per_pixel);
+        CHECK(target->format == info(format::rgba16f).name);
+      }
+    }
+  }
+}
+
 TEST_CASE("a schedule states each pass's fixed-function state, clears and geometry", "[schedule]") {
   for (const char* file : {"glass_room.json", "hair.json", "smoke.json", "glass_room_17.json"}) {
     const scene s = example(file);
@@ -114,7 +159,9 @@ TEST_CASE("a schedule states each pass's fixed-function state, clears and geomet
         if (pass.step == pass_step::gbuffer || pass.step == pass_step::ambient || pass.step == pass_step::forward_light)
           CHECK(pass.draws == geometry_set::surfaces);
         if (pass.step == pass_step::light || pass.step == pass_step::forward_light) CHECK(pass.state.blend == blending::add);
-        if (pass.step == pass_step::resolve || pass.step == pass_step::particles) CHECK(pass.state.blend == blending::over);
+        // Over the frame, or around the glass into layers that keep what they let through.
+        if (pass.step == pass_step::resolve || pass.step == pass_step::particles)
+          CHECK(pass.state.blend == (p.around_glass ? blending::layer : blending::over));
         // A light volume's back faces, depth clamped; a full-screen light neither.
         CHECK((pass.state.cull == culling::front) == (pass.kind == pass_kind::light_volume));
         CHECK(pass.state.depth_clamp == (pass.kind == pass_kind::light_volume));

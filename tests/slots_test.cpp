@@ -25,7 +25,7 @@ TEST_CASE("the slot table is emitted into GLSL as one define per slot", "[slots]
     CHECK(d.binding + d.count <= slot_bindings());
   }
   CHECK(binding(slot::frame) == 20);
-  CHECK(slot_bindings() == 36);
+  CHECK(slot_bindings() == 38);
 }
 
 TEST_CASE("every pass shader of shaders/glsl is embedded, as the file holds it", "[slots]") {

@@ -52,10 +52,10 @@ const std::map<std::string, named_layout>& layouts() {
 
 const std::map<std::string, std::function<void(glsl::source&)>>& predicates() {
   static const std::map<std::string, std::function<void(glsl::source&)>> table{
-      {"rows", glsl::add_interlace<interlace::rows>},
-      {"columns", glsl::add_interlace<interlace::columns>},
-      {"checker", glsl::add_interlace<interlace::checker>},
-      {"none", glsl::add_interlace<interlace::none>},
+      {"rows", [](glsl::source& s) { glsl::add_interlace<interlace::rows>(s); }},
+      {"columns", [](glsl::source& s) { glsl::add_interlace<interlace::columns>(s); }},
+      {"checker", [](glsl::source& s) { glsl::add_interlace<interlace::checker>(s); }},
+      {"none", [](glsl::source& s) { glsl::add_interlace<interlace::none>(s); }},
   };
   return table;
 }

@@ -40,6 +40,7 @@ std::size_t resource_bytes(const std::string& resource, const render::frame_plan
   if (resource == "kbuffer")
     return planned_bytes(plan, "kbuffer.", pixels) + std::size_t(o.kbuffer_k) * std::size_t(kbuffer_node_bytes) * pixels;
   if (resource == "lit") return bytes_of(render::forward_targets(plan.forward_depth, o.float_targets), pixels);
+  if (resource == "glass layers") return planned_bytes(plan, "glass.", pixels);
   if (resource == "scene" || resource == "volume atlas") return 0;
   return bytes_of({render::final_target_desc(o.float_targets)}, pixels);  // "frame" and the post chain's targets
 }

@@ -54,7 +54,7 @@ void apply(const pass_state& s) {
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     if (s.blend == blending::add) glBlendFunc(GL_ONE, GL_ONE);
-    else glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+    else glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, s.blend == blending::layer ? GL_SRC_ALPHA : GL_ONE);
   }
   if (s.cull == culling::off) {
     glDisable(GL_CULL_FACE);
@@ -94,7 +94,7 @@ struct renderer::impl {
   // Made for the frame's size.
   frame_targets out;
   GLuint lit_colour_only = 0;  // the forward target's colour and depth, for its light passes
-  gl::targets tail;
+  gl::targets tail, glass_layers;
   std::map<std::string, GLuint> registry;  // the post chain's inputs by name
 
   std::deque<timer> timers;
@@ -119,6 +119,9 @@ struct renderer::impl {
   void bind_gbuffer(int first, const gl::targets& g) const;
   void bind_shadow_map() const;
   void bind_layers() const;
+  void bind_frame_depths() const;
+  // Where the resolve and the particles draw: the composed frame, or the glass layers around the glass.
+  const gl::targets& layered_target() const { return plan.around_glass ? glass_layers : out.composed; }
   void bake(GLuint prog, GLuint lights_buffer) const;
   void run_light(const scheduled_pass& pass) const;
   void run_post(const scheduled_pass& pass) const;
@@ -170,8 +173,8 @@ result<bool> renderer::impl::make_programs() {
   }
   if (mode != shadow_mode::off) made.push_back(keep(shadow_prog, program(shadow_pass(sh, mode, plan.shadow_effects()), "shadow pass")));
   if (plan.on.has(effect::many_layers) && !plan.forward) {
-    made.push_back(keep(capture_prog, program(capture_pass(sh, mode, o), "capture pass")));
-    made.push_back(keep(resolve_prog, program(resolve_pass(sh, mode, o), "resolve pass")));
+    made.push_back(keep(capture_prog, program(capture_pass(sh, mode, o, plan.around_glass), "capture pass")));
+    made.push_back(keep(resolve_prog, program(resolve_pass(sh, mode, o, plan.around_glass), "resolve pass")));
   }
   if (smoke.on) {
     for (const bool shadowed : {false, true}) {
@@ -182,7 +185,7 @@ result<bool> renderer::impl::make_programs() {
       if (prog) programs.push_back(*prog);
       made.push_back(keep(shadowed ? bake_shadowed_prog : bake_prog, prog));
     }
-    made.push_back(keep(particle_prog, program(particle_pass(sh, smoke.shadows, o), "particle pass")));
+    made.push_back(keep(particle_prog, program(particle_pass(sh, smoke.shadows, o, plan.around_glass), "particle pass")));
   }
   for (const post_pass& pass : plan.post.passes) {
     GLuint p = 0;
@@ -341,11 +344,16 @@ result<bool> renderer::impl::make_sized() {
     if (!t) return failure{t.error()};
     tail = *t;
   }
+  if (plan.around_glass) {
+    auto t = make_targets(glass_layer_targets(), o.width, o.height, "glass layers", false);
+    if (!t) return failure{t.error()};
+    glass_layers = *t;
+  }
   return true;
 }
 
 void renderer::impl::destroy_sized() {
-  for (auto* t : {&out.lit, &out.composed, &tail}) destroy(*t);
+  for (auto* t : {&out.lit, &out.composed, &tail, &glass_layers}) destroy(*t);
   for (auto& t : out.gbuffers) destroy(t);
   for (auto& t : out.light_buffers) destroy(t);
   for (auto& [name, t] : out.post) destroy(t);
@@ -376,8 +384,14 @@ void renderer::impl::bind_shadow_map() const { bind_textures(binding(slot::shado
 void renderer::impl::bind_layers() const {
   glBindImageTexture(binding(slot::kbuffer_heads), out.kbuffer_heads, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::kbuffer_nodes), out.kbuffer_nodes);
-  bind_gbuffer(binding(slot::gbuffer), out.gbuffers[0]);
+  bind_frame_depths();
   bind_shadow_map();
+}
+
+// The G-buffers the k-buffer and particle passes read: the first, and around peeling's glass the second.
+void renderer::impl::bind_frame_depths() const {
+  bind_gbuffer(binding(slot::gbuffer), out.gbuffers[0]);
+  if (plan.around_glass && plan.peeling) bind_gbuffer(binding(slot::gbuffer2), out.gbuffers[1]);
 }
 
 // One bake dispatch over every region, with the lights in `lights_buffer`, reading the shadow map.
@@ -510,6 +524,7 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
           bind_gbuffer(binding(slot::gbuffer2), out.gbuffers[1]);
           bind_textures(binding(slot::light2), out.light_buffers[1]);
         }
+        if (plan.around_glass) bind_textures(binding(slot::glass_layers), glass_layers);
       }
       glUseProgram(compose_prog);
       draw_fullscreen(fullscreen_vao);
@@ -529,7 +544,8 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
     }
     case pass_step::resolve:
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-      bind(out.composed);
+      bind(layered_target());
+      clear(pass, layered_target());
       apply(pass.state);
       bind_layers();
       for (GLuint t = 0; t < 2; ++t) glBindTextureUnit(GLuint(binding(slot::kbuffer_tail)) + t, tail.textures[t]);
@@ -538,9 +554,10 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
       break;
     case pass_step::particles:
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-      bind(out.composed);
+      bind(layered_target());
+      clear(pass, layered_target());
       apply(pass.state);
-      bind_gbuffer(binding(slot::gbuffer), out.gbuffers[0]);
+      bind_frame_depths();
       if (out.volume_atlas) glBindTextureUnit(GLuint(binding(slot::volume_atlas)), out.volume_atlas);
       if (smoke.shadows != shadow_mode::off) bind_shadow_map();
       for (GLuint t = 0; t < 2; ++t)

@@ -562,7 +562,7 @@ result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shad
       b.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
       b.dstColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
       b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
-      b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      b.dstAlphaBlendFactor = state.transmit_alpha ? VK_BLEND_FACTOR_SRC_ALPHA : VK_BLEND_FACTOR_ONE;
       b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
     }
   }

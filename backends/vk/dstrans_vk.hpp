@@ -93,6 +93,9 @@ struct pipeline_state {
   // Blend colour = source + destination * source alpha, keeping the destination's alpha: the source is a
   // premultiplied layer whose alpha is the share of the image behind it that shows through.
   bool transmit = false;
+  // With transmit, the destination's alpha multiplied by the source's instead (blending::layer): a layer
+  // cleared to (0, 0, 0, 1) ends holding what it keeps of what lies behind it.
+  bool transmit_alpha = false;
   VkCullModeFlags cull = VK_CULL_MODE_NONE;  // counter-clockwise faces are front faces
   // Depth clamped instead of clipping at the near and far planes (needs the device feature depthClamp).
   bool depth_clamp = false;

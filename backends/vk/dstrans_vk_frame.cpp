@@ -184,7 +184,7 @@ struct renderer::impl {
   buffer zero_uv;
 
   frame_targets out;
-  vk::targets tail, lit_colour_only;  // the last: a view of the forward target's colour and depth (owns nothing)
+  vk::targets tail, glass_layers, lit_colour_only;  // the last: a view of the forward target's colour and depth (owns nothing)
   VkDescriptorPool pool = VK_NULL_HANDLE;
   std::vector<std::vector<VkDescriptorSet>> sets;  // [frame in flight][pass]
 
@@ -305,6 +305,8 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
   pipeline_state forward_state = scene_state;
   forward_state.bindings.push_back({light_index_binding, sizeof(std::uint32_t), VK_VERTEX_INPUT_RATE_INSTANCE});
   forward_state.attributes.push_back(attribute(3, light_index_binding, VK_FORMAT_R32_UINT));
+  // Where the resolve and the particles draw: the composed frame, or the glass layers around the glass.
+  const std::vector<format> layered_formats = plan.around_glass ? formats_of(glass_layer_targets()) : final_formats;
   std::vector<result<bool>> made;
   for (int k = 0; k < plan.layers; ++k)
     made.push_back(graphics(gbuffer[k], gbuffer_pass(sh, plan.peeling ? (k ? layer::second : layer::first) : layer::interlaced, plan.on, o),
@@ -346,10 +348,11 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
   if (plan.on.has(effect::many_layers) && !plan.forward) {
     pipeline_state st = without_texture_coordinates(scene_state);  // hair takes its factors alone
     st.additive = true;
-    made.push_back(graphics(capture, capture_pass(sh, mode, o), formats_of(kbuffer_tail_targets()), "capture pass", st));
+    made.push_back(graphics(capture, capture_pass(sh, mode, o, plan.around_glass), formats_of(kbuffer_tail_targets()), "capture pass", st));
     pipeline_state rs;
     rs.transmit = true;
-    made.push_back(graphics(resolve, resolve_pass(sh, mode, o), final_formats, "resolve pass", rs));
+    rs.transmit_alpha = plan.around_glass;
+    made.push_back(graphics(resolve, resolve_pass(sh, mode, o, plan.around_glass), layered_formats, "resolve pass", rs));
   }
   if (smoke.on) {
     for (const int shadowed : {0, 1}) {
@@ -365,11 +368,12 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
     }
     pipeline_state st;
     st.transmit = true;  // colour premultiplied, and in alpha what the frame behind keeps
+    st.transmit_alpha = plan.around_glass;
     st.bindings = {{0, sizeof(particle_vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
     st.attributes = {attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT, std::uint32_t(offsetof(particle_vertex, position))),
                      attribute(1, 0, VK_FORMAT_R32_UINT, std::uint32_t(offsetof(particle_vertex, system))),
                      attribute(2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, std::uint32_t(offsetof(particle_vertex, corner)))};
-    made.push_back(graphics(particle, particle_pass(sh, smoke.shadows, o), final_formats, "particle pass", st));
+    made.push_back(graphics(particle, particle_pass(sh, smoke.shadows, o, plan.around_glass), layered_formats, "particle pass", st));
   }
   post.resize(plan.post.passes.size());
   for (std::size_t k = 0; k < post.size(); ++k)
@@ -539,6 +543,11 @@ result<bool> renderer::impl::make_sized() {
     if (!nodes) return failure{nodes.error()};
     out.kbuffer_nodes = *nodes;
   }
+  if (plan.around_glass) {
+    auto t = dev.make_targets(glass_layer_targets(), o.width, o.height, "glass layers", false);
+    if (!t) return failure{t.error()};
+    glass_layers = *t;
+  }
   return make_sets();
 }
 
@@ -548,12 +557,12 @@ void renderer::impl::destroy_sized() {
     for (const image& c : t.colors) layouts.erase(c.handle);
     layouts.erase(t.depth.handle);
   };
-  for (const vk::targets* t : {&out.lit, &out.composed, &tail}) forget(*t);
+  for (const vk::targets* t : {&out.lit, &out.composed, &tail, &glass_layers}) forget(*t);
   for (const vk::targets& t : out.gbuffers) forget(t);
   for (const vk::targets& t : out.light_buffers) forget(t);
   for (const auto& [name, t] : out.post) forget(t);
   layouts.erase(out.kbuffer_heads.handle);
-  for (vk::targets* t : {&out.lit, &out.composed, &tail}) dev.destroy(*t);
+  for (vk::targets* t : {&out.lit, &out.composed, &tail, &glass_layers}) dev.destroy(*t);
   for (vk::targets& t : out.gbuffers) dev.destroy(t);
   for (vk::targets& t : out.light_buffers) dev.destroy(t);
   for (auto& [name, t] : out.post) dev.destroy(t);
@@ -642,6 +651,7 @@ bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const
     b.buffers[binding(slot::kbuffer_nodes)] = out.kbuffer_nodes.handle;
     for (int t = 0; t < 2; ++t) b.images[binding(slot::kbuffer_tail) + t] = &tail.colors[std::size_t(t)];
   }
+  for (std::size_t t = 0; t < glass_layers.colors.size(); ++t) b.images[binding(slot::glass_layers) + int(t)] = &glass_layers.colors[t];
   if (smoke.on) {
     b.buffers[binding(slot::particle_regions)] = regions.handle;
     b.buffers[binding(slot::volume_lights)] = pass.step == pass_step::bake_light ? shadowed_lights.at(pass.light).handle : unshadowed.handle;
@@ -787,9 +797,9 @@ const vk::targets* renderer::impl::attachments(const scheduled_pass& pass) const
     case pass_step::forward_light: return &lit_colour_only;
     case pass_step::light: return &out.light_buffers[std::size_t(pass.index)];
     case pass_step::compose:
-    case pass_step::blend:
+    case pass_step::blend: return &out.composed;
     case pass_step::resolve:
-    case pass_step::particles: return &out.composed;
+    case pass_step::particles: return plan.around_glass ? &glass_layers : &out.composed;
     case pass_step::capture: return &tail;
     case pass_step::post: return &out.post.at(plan.post.passes[std::size_t(pass.index)].output);
     case pass_step::bake:

@@ -157,22 +157,24 @@ namespace glsl {
 
 // Appends predicate I and binds the generic names the passes call:
 //   bool dst_interlace_keep(ivec2 pixel, ivec2 size); ivec2 dst_interlace_partner(ivec2 pixel, ivec2 size);
-// Their pixels count rows as src.pixel_rows() says; the predicate sees them from the top.
+// or, with `as`, AS_keep and AS_partner (for a pass that looks shadow maps up under the generic names and
+// also pairs the G-buffer's pixels by another predicate). Their pixels count rows as src.pixel_rows() says;
+// the predicate sees them from the top.
 template <class I>
-void add_interlace(source& src) {
+void add_interlace(source& src, const std::string& as = "dst_interlace") {
   src.add_shared(I::text);
   const std::string k = std::string("dst_") + I::name;
   if (src.pixel_rows() == rows::from_top) {
     src.add("// dstrans interlace predicate \"" + std::string(I::name) + "\"\n" +
-                "bool dst_interlace_keep(ivec2 pixel, ivec2 size) { return " + k + "_keep(pixel, size); }\n" +
-                "ivec2 dst_interlace_partner(ivec2 pixel, ivec2 size) { return " + k + "_partner(pixel, size); }\n",
+                "bool " + as + "_keep(ivec2 pixel, ivec2 size) { return " + k + "_keep(pixel, size); }\n" +
+                "ivec2 " + as + "_partner(ivec2 pixel, ivec2 size) { return " + k + "_partner(pixel, size); }\n",
             __FILE__, __LINE__);
     return;
   }
   src.add_shared(text::dst_flip_rows);
   src.add("// dstrans interlace predicate \"" + std::string(I::name) + "\", pixels counted from the bottom row\n" +
-              "bool dst_interlace_keep(ivec2 pixel, ivec2 size) { return " + k + "_keep(dst_flip_rows(pixel, size), size); }\n" +
-              "ivec2 dst_interlace_partner(ivec2 pixel, ivec2 size) {\n" +
+              "bool " + as + "_keep(ivec2 pixel, ivec2 size) { return " + k + "_keep(dst_flip_rows(pixel, size), size); }\n" +
+              "ivec2 " + as + "_partner(ivec2 pixel, ivec2 size) {\n" +
               "  return dst_flip_rows(" + k + "_partner(dst_flip_rows(pixel, size), size), size);\n}\n",
           __FILE__, __LINE__);
 }

@@ -62,6 +62,16 @@ struct pipeline_plan {
   }
 };
 
+// Whether a deferred frame with effects `e` draws hair and particles around its glass layer: into two
+// premultiplied targets, one with what lies between the glass and the opaque surface behind it and one with
+// what lies in front of the glass, which the compose pass puts in depth order around the glass.
+constexpr bool around_glass(effects e) {
+  return e.has(effect::transparency) && (e.has(effect::many_layers) || e.has(effect::light_volumes));
+}
+
+// The switch of the passes that draw around the glass (around_glass).
+inline constexpr const char* around_glass_switch = "DST_AROUND_GLASS";
+
 // E: the effect set; G: the G-buffer's layout (Table 3.1's, or compact_gbuffer with depth from the depth
 // attachment, which the plan does not count, as every renderer has one).
 template <class E, class G = thesis_gbuffer>
@@ -129,10 +139,19 @@ struct pipeline {
     compose_reads.insert(compose_reads.end(), light.begin(), light.end());
     if constexpr (interlaced) compose.push_back(effect_switch(effect::transparency));
     if constexpr (refracts) compose.push_back(effect_switch(effect::refraction));
-    p.passes.push_back({"compose", compose_reads, {"output"}, compose});
+    // Hair and particles over the composed image, or around the glass into their own targets before it.
+    std::vector<std::string> layered{"output"};
+    if constexpr (around_glass(set)) {
+      layered = {"glass.behind", "glass.front"};
+      for (const std::string& t : layered) p.targets.push_back({t, info(format::rgba16f).name, info(format::rgba16f).bytes_per_pixel, false});
+      compose_reads.insert(compose_reads.end(), layered.begin(), layered.end());
+      compose.push_back(around_glass_switch);
+    } else {
+      p.passes.push_back({"compose", compose_reads, {"output"}, compose});
+    }
     if constexpr (many_layers) {
-      // S1 after the opaque frame: hair fragments into per-pixel lists (their overflow into the tail
-      // targets), then the resolve over the composed image.
+      // S1: hair fragments in front of the opaque surfaces into per-pixel lists (their overflow into the
+      // tail targets), then the resolve over the composed image or around the glass.
       const std::vector<std::string> lists{"kbuffer.heads", "kbuffer.nodes"}, tail{"kbuffer.tail", "kbuffer.transmittance"};
       p.targets.push_back({"kbuffer.heads", "R32UI", 4, false});
       p.targets.push_back({"kbuffer.nodes", "buffer", kbuffer_nodes_per_pixel * kbuffer_node_bytes, false});
@@ -143,19 +162,22 @@ struct pipeline {
       resolve_reads.insert(resolve_reads.end(), tail.begin(), tail.end());
       resolve_reads.push_back(depth);
       if (has_shadows) resolve_reads.push_back("shadow.depth");
-      const std::vector<std::string> on{effect_switch(effect::many_layers)};
+      std::vector<std::string> on{effect_switch(effect::many_layers)};
+      if constexpr (around_glass(set)) on.push_back(around_glass_switch);
       p.passes.push_back({"capture", {depth}, capture_writes, on});
-      p.passes.push_back({"resolve", resolve_reads, {"output"}, on});
+      p.passes.push_back({"resolve", resolve_reads, layered, on});
     }
     if constexpr (light_volumes) {
       // S2: the light of each system's bounds baked into its region of the atlas (added to in place,
       // RGBA8 as S2 stored it), each shadowed spot light's dispatch right after its shadow pass; the
-      // particles, sorted, over the frame.
+      // particles, sorted, over the frame or around the glass.
       p.targets.push_back({"volume.atlas", info(format::rgba8).name, info(format::rgba8).bytes_per_pixel, false, true});
-      const std::vector<std::string> on{effect_switch(effect::light_volumes)};
+      std::vector<std::string> on{effect_switch(effect::light_volumes)};
       p.passes.push_back({"bake", shadow, {"volume.atlas"}, on});
-      p.passes.push_back({"particles", {"volume.atlas", depth}, {"output"}, on});
+      if constexpr (around_glass(set)) on.push_back(around_glass_switch);
+      p.passes.push_back({"particles", {"volume.atlas", depth}, layered, on});
     }
+    if constexpr (around_glass(set)) p.passes.push_back({"compose", compose_reads, {"output"}, compose});
     for (const planned_target& t : p.targets)
       if (!t.shadow_map && !t.volume) p.bytes_per_pixel += t.bytes_per_pixel;
     return p;

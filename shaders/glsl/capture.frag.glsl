@@ -1,4 +1,4 @@
-// The capture pass (S1): every hair fragment in front of the opaque frame goes into its pixel's list; when
+// The capture pass (S1): every hair fragment in front of the opaque surfaces goes into its pixel's list; when
 // the pool is full it is shaded cheaply and added to the tail targets instead (never dropped). Fragments
 // with alpha below 1/255 are dropped. With DST_LAYERS_WBOIT (weighted blended OIT, McGuire and Bavoil
 // 2013, the peer) there are no lists: every fragment is shaded fully and added to the tail with its weight.
@@ -11,7 +11,7 @@ void main() {
   dst_material_data m = materials[surface_material];
   float alpha = m.diffuse_alpha.w;
   ivec2 p = dst_pixel();
-  if (alpha < 1.0f / 255.0f || gl_FragCoord.z >= dst_gbuffer_read(p).depth) discard;
+  if (alpha < 1.0f / 255.0f || gl_FragCoord.z >= dst_glass_and_opaque(p).y) discard;
   vec3 tangent = normalize(world_normal);
   vec4 colour_alpha = vec4(m.diffuse_alpha.xyz, alpha);
   optical_depth = -log(max(1.0f - alpha, 1.0f / 1024.0f));

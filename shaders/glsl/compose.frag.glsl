@@ -2,13 +2,34 @@
 // DST_TRANSPARENCY, de-interlacing and the blend of Eq. 3.3 with specular and ambient light; with
 // DST_REFRACTION also refraction with the partner-row fallback and depth rejection. The technique says
 // where the other layer of a pixel lives (interlaced.glsl, peeled.glsl): dst_other_layer. With
-// DST_ROUGH_REFRACTION the refracted sample is blurred by the glass's roughness (refraction.hpp).
+// DST_ROUGH_REFRACTION the refracted sample is blurred by the glass's roughness (refraction.hpp). With
+// DST_AROUND_GLASS the hair and particles lie in depth order around the glass: what lies behind it is laid
+// over the surface behind before the blend (refracted with it), what lies in front over the blend.
 layout(location = 0) out vec4 colour;
 
+#ifdef DST_AROUND_GLASS
+layout(binding = DST_SLOT_GLASS_LAYERS) uniform sampler2D dst_glass_behind;
+layout(binding = DST_SLOT_GLASS_LAYERS + 1) uniform sampler2D dst_glass_front;
+// `lit`, what pixel q shows behind its glass, under the hair and particles that lie between the two.
+vec3 dst_under_glass(ivec2 q, vec3 lit) {
+  vec4 b = texelFetch(dst_glass_behind, q, 0);
+  return b.xyz + lit * b.w;
+}
+// `c`, pixel p's colour up to its glass, under the hair and particles in front of the glass.
+vec3 dst_over_glass(ivec2 p, vec3 c) {
+  vec4 f = texelFetch(dst_glass_front, p, 0);
+  return f.xyz + c * f.w;
+}
+#else
+vec3 dst_under_glass(ivec2 q, vec3 lit) { return lit; }
+vec3 dst_over_glass(ivec2 p, vec3 c) { return c; }
+#endif
+
 #ifdef DST_REFRACTION
-// What glass t shows at pixel q: q's sample, or the layer behind it where q holds glass too. A sample in
-// front of the glass would leak into it, so o and light_o (the glass's own background) stay then.
-void dst_refracted(ivec2 q, dst_surface t, inout dst_surface o, inout dst_light_sample light_o) {
+// What glass t shows at pixel q: q's sample, or the layer behind it where q holds glass too; true where it
+// took it. A sample in front of the glass would leak into it, so o and light_o (the glass's own
+// background) stay then.
+bool dst_refracted(ivec2 q, dst_surface t, inout dst_surface o, inout dst_light_sample light_o) {
   dst_surface r = dst_gbuffer_read(q), r2 = r;
   dst_light_sample light_r2 = dst_light_sample_zero();
   if (dst_transparent(r.alpha)) dst_other_layer(q, r, r2, light_r2);  // the other layer only where it is needed
@@ -17,6 +38,7 @@ void dst_refracted(ivec2 q, dst_surface t, inout dst_surface o, inout dst_light_
     o = from == 1 ? r : r2;
     light_o = from == 1 ? dst_light_read(q) : light_r2;
   }
+  return from != 0;
 }
 #endif
 
@@ -37,8 +59,8 @@ vec3 dst_rough_refracted(ivec2 p, ivec2 moved, vec3 lit, dst_surface t, dst_surf
     ivec2 q = clamp(moved + ivec2(floor(vec2(tap.x, tap.y) * radius + 0.5f)), ivec2(0), frame.size.xy - 1);
     dst_surface s = behind;
     dst_light_sample light_s = light_behind;
-    dst_refracted(q, t, s, light_s);
-    sum += dst_shade(s, light_s, ambient) * tap.z;
+    bool taken = dst_refracted(q, t, s, light_s);
+    sum += dst_under_glass(taken ? q : p, dst_shade(s, light_s, ambient)) * tap.z;
   }
   return sum;
 }
@@ -59,6 +81,7 @@ void main() {
     dst_light_sample light_t = a_transparent ? light_a : light_b;
     dst_surface o = a_transparent ? b : a;
     dst_light_sample light_o = a_transparent ? light_b : light_a;
+    ivec2 from = p;  // the pixel whose surface behind the glass the glass shows
 #ifdef DST_REFRACTION
     // The sample moved by the glass's screen-space normal, or the layer behind it when it holds glass
     // too; a sample in front of the glass would leak into it, so the background stays then.
@@ -67,15 +90,15 @@ void main() {
     dst_surface behind = o;
     dst_light_sample light_behind = light_o;
 #endif
-    dst_refracted(moved, t, o, light_o);
+    if (dst_refracted(moved, t, o, light_o)) from = moved;
 #endif
-    vec3 lit_o = dst_shade(o, light_o, ambient);
+    vec3 lit_o = dst_under_glass(from, dst_shade(o, light_o, ambient));
 #ifdef DST_ROUGH_REFRACTION
     lit_o = dst_rough_refracted(p, moved, lit_o, t, o, behind, light_behind, ambient);
 #endif
-    colour = vec4(dst_blend(lit_o, dst_shade(t, light_t, ambient), t.alpha), 1.0f);
+    colour = vec4(dst_over_glass(p, dst_blend(lit_o, dst_shade(t, light_t, ambient), t.alpha)), 1.0f);
     return;
   }
 #endif
-  colour = vec4(dst_shade(a, light_a, ambient), 1.0f);  // empty pixels are cleared to black
+  colour = vec4(dst_over_glass(p, dst_under_glass(p, dst_shade(a, light_a, ambient))), 1.0f);  // empty pixels are cleared to black
 }

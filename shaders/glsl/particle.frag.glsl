@@ -2,7 +2,8 @@
 // corner, facing the camera at the centre), from the texels of the cell at its centre or
 // (DST_PARTICLES_FORWARD, the reference) by every light per fragment with Lambert's law, and laid over the
 // frame premultiplied, with in alpha the share of the frame that shows through (the blend keeps
-// colour = source + frame * alpha).
+// colour = source + frame * alpha); around the glass (DST_AROUND_GLASS), into the glass layer on its side of
+// the pixel's glass, the other layer given nothing. A particle fades out near the opaque surface behind it.
 layout(location = 0) in vec3 world;
 layout(location = 1) in vec3 particle_corner_alpha;
 layout(location = 2) flat in vec4 particle_material;
@@ -11,6 +12,9 @@ layout(location = 3) flat in float particle_range;
 layout(location = 4) flat in vec4 particle_texels[DST_VOLUME_TEXELS];
 #endif
 layout(location = 0) out vec4 dst_particle_colour;
+#ifdef DST_AROUND_GLASS
+layout(location = 1) out vec4 dst_particle_front;
+#endif
 
 // World units over which a particle fades out as it nears the surface behind it (soft particles): without
 // it, quads cut the floor and walls along hard lines.
@@ -51,7 +55,8 @@ void main() {
   float r2 = dot(corner, corner);
   if (r2 >= 1.0f) discard;
   vec3 eye = frame.camera_position.xyz;
-  float gap = distance(dst_behind(world, dst_gbuffer_read(dst_pixel()).depth), eye) - distance(world, eye);
+  vec2 glass = dst_glass_and_opaque(dst_pixel());
+  float gap = distance(dst_behind(world, glass.y), eye) - distance(world, eye);
   if (!(gap > 0.0f)) discard;
   vec3 right = vec3(frame.view[0][0], frame.view[1][0], frame.view[2][0]);
   vec3 up = vec3(frame.view[0][1], frame.view[1][1], frame.view[2][1]);
@@ -64,5 +69,13 @@ void main() {
 #endif
   float soft = (1.0f - r2) * (1.0f - r2) * min(gap / dst_particle_fade, 1.0f);
   float a = clamp(particle_material.w * particle_corner_alpha.z * soft, 0.0f, 1.0f);
-  dst_particle_colour = vec4(particle_material.xyz * (frame.ambient.xyz + light) * a, 1.0f - a);
+  vec4 colour = vec4(particle_material.xyz * (frame.ambient.xyz + light) * a, 1.0f - a);
+#ifdef DST_AROUND_GLASS
+  bool behind = gl_FragCoord.z > glass.x;
+  vec4 none = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  dst_particle_colour = behind ? colour : none;
+  dst_particle_front = behind ? none : colour;
+#else
+  dst_particle_colour = colour;
+#endif
 }

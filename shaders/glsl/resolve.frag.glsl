@@ -2,8 +2,13 @@
 // by depth (ties by their packed tangent and colour, so equal fragments resolve the same way every time);
 // the rest are blended out of order (the tail) with the capture pass's overflow. The core is shaded fully
 // (Eq. 2) unless DST_LAYERS_CHEAP; the tail cheaply, not at all with DST_LAYERS_TAILLESS (its opacity
-// still counts), or fully with DST_LAYERS_FORWARD (the reference, whose core holds every fragment anyway). Written premultiplied over the frame: colour + frame * alpha (alpha = what the frame keeps).
+// still counts), or fully with DST_LAYERS_FORWARD (the reference, whose core holds every fragment anyway).
+// Written premultiplied over the frame: colour + frame * alpha (alpha = what the frame keeps); around the
+// glass (DST_AROUND_GLASS) into the glass layers, what lies behind the glass apart from what lies in front.
 layout(location = 0) out vec4 colour;
+#ifdef DST_AROUND_GLASS
+layout(location = 1) out vec4 colour_front;
+#endif
 layout(binding = DST_SLOT_KBUFFER_TAIL) uniform sampler2D dst_tail;
 layout(binding = DST_SLOT_KBUFFER_TAIL + 1) uniform sampler2D dst_tail_optical_depth;
 
@@ -63,8 +68,13 @@ void main() {
       transmittance *= 1.0f - c.w;
     }
   }
-  vec3 result = dst_tail_over(vec3(0.0f), tail, transmittance);
-  float keeps = transmittance;
+  // Around the glass (DST_AROUND_GLASS), the core splits at the glass's depth, and the tail goes with the
+  // core's farthest fragment (every list fragment in it lies farther still); elsewhere all lies behind.
+  float glass = dst_glass_and_opaque(p).x;
+  bool tail_behind = true;
+  for (int i = 0; i < n; ++i) tail_behind = uintBitsToFloat(core[i].x) > glass;
+  vec4 none = vec4(0.0f, 0.0f, 0.0f, 1.0f), tail_layer = vec4(dst_tail_over(vec3(0.0f), tail, transmittance), transmittance);
+  vec4 behind = tail_behind ? tail_layer : none, front = tail_behind ? none : tail_layer;
   for (int i = n - 1; i >= 0; --i) {
     vec4 c = dst_unpack_colour(core[i].z);
 #ifdef DST_LAYERS_CHEAP
@@ -72,8 +82,11 @@ void main() {
 #else
     vec3 shaded = dst_shade_node(p, core[i], true);
 #endif
-    result = dst_over(result, vec4(shaded, c.w));
-    keeps *= 1.0f - c.w;
+    if (uintBitsToFloat(core[i].x) > glass) behind = vec4(dst_over(behind.xyz, vec4(shaded, c.w)), behind.w * (1.0f - c.w));
+    else front = vec4(dst_over(front.xyz, vec4(shaded, c.w)), front.w * (1.0f - c.w));
   }
-  colour = vec4(result, keeps);
+  colour = behind;
+#ifdef DST_AROUND_GLASS
+  colour_front = front;
+#endif
 }

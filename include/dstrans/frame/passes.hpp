@@ -41,8 +41,9 @@ struct pass_sources {
   glsl::source vertex = pass_source(), fragment = pass_source();
 };
 
-// The interlace predicate `p` (dst_interlace_keep, dst_interlace_partner) into `src`.
-void add_predicate(glsl::source& src, predicate p);
+// The interlace predicate `p` (dst_interlace_keep, dst_interlace_partner, or named `as`: glsl::add_interlace)
+// into `src`.
+void add_predicate(glsl::source& src, predicate p, const std::string& as = "dst_interlace");
 // The G-buffer layout `l`'s GLSL under `name` (its targets: render::gbuffer_targets); a read side of the
 // compact layout takes depth from the depth attachment at the binding Table 3.1's depth target would have
 // (first_binding + 3).
@@ -56,21 +57,26 @@ result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode mode, b
 result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const options& o);
 
 // The k-buffer (many_layers): hair into per-pixel lists (or the tail targets), then the resolve over the
-// frame with the options' k and variant. `shadows` is the shadow map's kind.
-result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o);
-result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o);
+// frame with the options' k and variant, or with `around` (frame_plan::around_glass) into the glass layers.
+// `shadows` is the shadow map's kind.
+result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around);
+result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around);
 // Its node pool's size and tail targets.
 std::uint32_t kbuffer_capacity(const options& o);
 // The bytes of a frame's render targets, shadow maps and k-buffer lists, for the resource budget.
 std::size_t frame_bytes(const frame_plan& p, const options& o);
 std::vector<target_desc> kbuffer_tail_targets();
+// The glass layers (frame_plan::around_glass): what lies behind a pixel's glass and what lies in front of
+// it, each premultiplied, with in alpha what it keeps of what lies behind it.
+std::vector<target_desc> glass_layer_targets();
 
 // Light volumes (light_volumes: baked lighting for particles, light_volume.hpp). The bake of options' model: all unshadowed lights
 // (`shadows` off), or one shadowed spot light reading the shadow map of kind `shadows` through the
 // bake's shadow hook. The particle pass: lit from the atlas, or (options::particle_light::forward) by
-// every light, reading the shadow maps' copies in layers.
+// every light, reading the shadow maps' copies in layers; over the frame, or with `around` into the glass
+// layers.
 result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o);
-result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o);
+result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around);
 
 // A pass of the post-processing chain (post.hpp): the full-screen triangle and the pass's shader, its
 // texture inputs at slot::post_input and the next, its parameters' block at slot::post_params, the
@@ -159,6 +165,22 @@ inline void add_layers_inputs(glsl::source& src, shadow_mode shadows, const opti
   }
   switches.push_back(effect_switch(effect::many_layers));
 }
+
+// What the passes that draw around the glass read besides the G-buffer (around_glass.glsl): the G-buffer's
+// interlace predicate, as dst_gbuffer_interlace_partner (the particles' reference may look shadow maps up
+// under the generic names), or peeling's second layer.
+inline void add_around_glass(glsl::source& src, const options& o, std::vector<std::string>& switches) {
+  switches.push_back(around_glass_switch);
+  if (o.method == technique::interlaced) {
+    add_predicate(src, o.interlace, "dst_gbuffer_interlace");
+    return;
+  }
+  glsl::layout_options read;
+  read.sides = glsl::side::read;
+  read.first_binding = binding(slot::gbuffer2);
+  add_gbuffer_layout(src, o.layout, "gbuffer2", read);
+  switches.push_back("DST_PEELED");
+}
 }  // namespace pass_detail
 
 inline glsl::source pass_source() {
@@ -167,11 +189,11 @@ inline glsl::source pass_source() {
   return src;
 }
 
-inline void add_predicate(glsl::source& src, predicate p) {
+inline void add_predicate(glsl::source& src, predicate p, const std::string& as) {
   switch (p) {
-    case predicate::rows: glsl::add_interlace<interlace::rows>(src); break;
-    case predicate::columns: glsl::add_interlace<interlace::columns>(src); break;
-    case predicate::checker: glsl::add_interlace<interlace::checker>(src); break;
+    case predicate::rows: glsl::add_interlace<interlace::rows>(src, as); break;
+    case predicate::columns: glsl::add_interlace<interlace::columns>(src, as); break;
+    case predicate::checker: glsl::add_interlace<interlace::checker>(src, as); break;
   }
 }
 
@@ -276,6 +298,7 @@ inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on
   for (effect e : {effect::transparency, effect::refraction})
     if (on.has(e)) switches.push_back(effect_switch(e));
   if (rough_refraction(o, on)) switches.push_back("DST_ROUGH_REFRACTION");
+  if (!is_forward(o.method) && around_glass(on)) switches.push_back(around_glass_switch);
   std::string other = "interlaced.glsl";
   const bool temporal = temporal_interlacing(o, on);
   if (o.method == technique::interlaced) {
@@ -321,11 +344,11 @@ inline result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shade
     }
   if (auto ok = add("compose pass", compose_pass(shaders, plan.on, o)); !ok) return failure{ok.error()};
   if (plan.on.has(effect::many_layers)) {
-    if (auto ok = add("capture pass", capture_pass(shaders, plan.shadows, o)); !ok) return failure{ok.error()};
-    if (auto ok = add("resolve pass", resolve_pass(shaders, plan.shadows, o)); !ok) return failure{ok.error()};
+    if (auto ok = add("capture pass", capture_pass(shaders, plan.shadows, o, plan.around_glass)); !ok) return failure{ok.error()};
+    if (auto ok = add("resolve pass", resolve_pass(shaders, plan.shadows, o, plan.around_glass)); !ok) return failure{ok.error()};
   }
   if (plan.on.has(effect::light_volumes))
-    if (auto ok = add("particle pass", particle_pass(shaders, plan.shadows, o)); !ok) return failure{ok.error()};
+    if (auto ok = add("particle pass", particle_pass(shaders, plan.shadows, o, plan.around_glass)); !ok) return failure{ok.error()};
   for (const post_pass& pass : plan.post.passes)
     if (auto ok = add("post " + pass.name, post_pass_sources(shaders, pass, o)); !ok) return failure{ok.error()};
   return out;
@@ -350,27 +373,36 @@ inline std::vector<target_desc> kbuffer_tail_targets() {
   return {{format::rgba16f, {"tail.r", "tail.g", "tail.b", "tail.alpha"}}, {format::r16f, {"optical_depth"}}};
 }
 
-inline result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
+inline std::vector<target_desc> glass_layer_targets() {
+  return {{format::rgba16f, {"behind.r", "behind.g", "behind.b", "behind.kept"}},
+          {format::rgba16f, {"front.r", "front.g", "front.b", "front.kept"}}};
+}
+
+inline result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around) {
   pass_sources p;
   std::vector<std::string> switches;
   pass_detail::add_layers_inputs(p.fragment, shadows, o, switches);
+  if (around) pass_detail::add_around_glass(p.fragment, o, switches);
   if (o.kbuffer_variant == options::layers::wboit) switches.push_back("DST_LAYERS_WBOIT");
-  if (auto ok = pass_detail::finish(p.fragment, shaders, {"kbuffer.glsl", "capture.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"around_glass.glsl", "kbuffer.glsl", "capture.frag.glsl"}, switches); !ok)
+    return failure{ok.error()};
   return pass_detail::scene_vertex(shaders, std::move(p));
 }
 
-inline result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
+inline result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around) {
   pass_sources p;
   p.vertex = glsl::fullscreen_vertex_shader();
   std::vector<std::string> switches;
   pass_detail::add_layers_inputs(p.fragment, shadows, o, switches);
+  if (around) pass_detail::add_around_glass(p.fragment, o, switches);
   // The forward reference keeps up to 64 fragments in order and shades its tail fully too.
   const int k = o.kbuffer_variant == options::layers::forward ? 64 : std::clamp(o.kbuffer_k, 1, 32);
   p.fragment.add("#define DST_K " + std::to_string(k) + "\n", "dstrans/frame/passes.hpp", 1);
   if (o.kbuffer_variant == options::layers::tailless) switches.push_back("DST_LAYERS_TAILLESS");
   if (o.kbuffer_variant == options::layers::cheap) switches.push_back("DST_LAYERS_CHEAP");
   if (o.kbuffer_variant == options::layers::forward) switches.push_back("DST_LAYERS_FORWARD");
-  if (auto ok = pass_detail::finish(p.fragment, shaders, {"kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok) return failure{ok.error()};
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"around_glass.glsl", "kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok)
+    return failure{ok.error()};
   return p;
 }
 
@@ -393,7 +425,7 @@ inline result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode s
   return src;
 }
 
-inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o) {
+inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around) {
   pass_sources p;
   std::vector<std::string> switches;
   if (o.particles == options::particle_light::forward) {
@@ -413,9 +445,11 @@ inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mo
   read.sides = glsl::side::read;
   read.first_binding = binding(slot::gbuffer);
   add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
-  std::vector<std::string> files{"particle.frag.glsl"};
+  std::vector<std::string> fragment_switches = switches;
+  if (around) pass_detail::add_around_glass(p.fragment, o, fragment_switches);
+  std::vector<std::string> files{"around_glass.glsl", "particle.frag.glsl"};
   if (o.particles == options::particle_light::forward && shadows != shadow_mode::off) files.insert(files.begin(), "lighting.glsl");
-  if (auto ok = pass_detail::finish(p.fragment, shaders, files, switches); !ok) return failure{ok.error()};
+  if (auto ok = pass_detail::finish(p.fragment, shaders, files, fragment_switches); !ok) return failure{ok.error()};
   return p;
 }
 

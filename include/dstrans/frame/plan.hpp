@@ -119,6 +119,10 @@ struct frame_plan {
   // does not, it reads no texture coordinates: it is built for shadow_effects(), `on` less effect::textures.
   bool textured_shadows;
   int layers;              // G-buffers (and light buffers) a frame draws: 0 forward, 2 peeling, 1 interlaced
+  // Hair and particles drawn around the glass (dstrans::around_glass, deferred techniques): the k-buffer's
+  // resolve and the particle pass draw into glass_layer_targets before the compose pass, which lays what
+  // lies behind a pixel's glass under it, refracted with the surface behind, and the rest over it.
+  bool around_glass;
   post_plan post;          // the scene's post-processing chain (deferred techniques only; in pipeline too)
   // The G-buffers (and light buffers) kept: those drawn, and with temporal interlacing the previous frame's.
   int kept_layers() const { return temporal ? 2 : layers; }
@@ -439,6 +443,7 @@ inline frame_plan plan_of(const scene& s, const options& o) {
   p.peeling = o.method == technique::peeling;
   p.temporal = temporal_interlacing(o, p.on);
   p.layers = p.forward ? 0 : p.peeling ? 2 : 1;
+  p.around_glass = !p.forward && dstrans::around_glass(p.on);
   // The previous frame's G-buffer and light buffer, which the compose pass reads.
   if (p.temporal) {
     std::vector<planned_target> history;
@@ -496,6 +501,49 @@ inline std::vector<glm::vec4> gbuffer_clears(gbuffer_layout l) {
     out.push_back(out.empty() ? glm::vec4(0, 0, 0, 1) : t.channels[0] == "depth" ? glm::vec4(1.0f) : glm::vec4(0.0f));
   return out;
 }
+
+namespace frame_detail {
+// The k-buffer's and the particles' passes of frame plan `p`: over the composed frame, or around the glass
+// into the glass layers, which the first of them clears to nothing drawn (no colour, all of what lies
+// behind kept).
+inline void add_layered(frame_schedule& out, const frame_plan& p, const particle_plan& smoke) {
+  const std::string into = p.around_glass ? "glass layers" : "frame";
+  // What the passes read of the frame: the G-buffers (around the glass, peeling's second too, for the
+  // opaque surface's depth), and the composed frame they draw over.
+  std::vector<std::string> frame_reads{"gbuffer"};
+  if (p.around_glass && p.peeling) frame_reads.push_back("gbuffer 2");
+  if (!p.around_glass) frame_reads.push_back("frame");
+  bool first = true;
+  auto add = [&](pass_step step, const std::string& timer, const std::string& label, pass_kind kind, std::vector<std::string> reads,
+                 std::vector<std::string> writes) -> scheduled_pass& {
+    scheduled_pass pass(timer, label, kind, -1, std::move(reads), std::move(writes));
+    pass.step = step;
+    out.passes.push_back(std::move(pass));
+    return out.passes.back();
+  };
+  auto layered = [&](pass_step step, const std::string& timer, const std::string& label, pass_kind kind, std::vector<std::string> reads) {
+    reads.insert(reads.end(), frame_reads.begin(), frame_reads.end());
+    scheduled_pass& pass = add(step, timer, label, kind, std::move(reads), {into});
+    pass.state.blend = p.around_glass ? blending::layer : blending::over;
+    if (p.around_glass && first) pass.clears = {glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)};
+    first = false;
+  };
+  if (p.on.has(effect::many_layers) && !p.forward) {
+    std::vector<std::string> reads{"scene", "gbuffer"};
+    if (p.around_glass && p.peeling) reads.push_back("gbuffer 2");
+    if (p.shadows != shadow_mode::off && hair_shadow_light(p) >= 0) reads.push_back("shadow map");
+    // The capture also empties the lists (heads and node count) before it fills them.
+    scheduled_pass& c = add(pass_step::capture, "capture", "capture pass", pass_kind::geometry, reads, {"kbuffer"});
+    c.state.blend = blending::add;
+    c.draws = geometry_set::hair;
+    c.clears = {glm::vec4(0.0f), glm::vec4(0.0f)};
+    layered(pass_step::resolve, "resolve", "resolve pass", pass_kind::fullscreen, {"kbuffer"});
+  }
+  if (smoke.on)
+    layered(pass_step::particles, "particles", "particle pass", pass_kind::geometry,
+            {smoke.baking ? "volume atlas" : smoke.shadowed_lights.empty() ? "scene" : "shadow layers"});
+}
+}  // namespace frame_detail
 
 inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o) {
   frame_schedule out;
@@ -596,23 +644,13 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
     }
     // Temporal interlacing: what the previous frame left, which no pass of this frame writes.
     if (p.temporal) reads.insert(reads.end(), {"previous gbuffer", "previous light buffer"});
+    if (p.around_glass) {
+      frame_detail::add_layered(out, p, smoke);
+      reads.push_back("glass layers");
+    }
     add(pass_step::compose, "compose", "compose pass", pass_kind::fullscreen, -1, reads, {"frame"});
   }
-  if (p.on.has(effect::many_layers) && !p.forward) {
-    std::vector<std::string> reads{"scene"};
-    if (p.shadows != shadow_mode::off && hair_shadow_light(p) >= 0) reads.push_back("shadow map");
-    // The capture also empties the lists (heads and node count) before it fills them.
-    scheduled_pass& c = add(pass_step::capture, "capture", "capture pass", pass_kind::geometry, -1, reads, {"kbuffer"});
-    c.state.blend = blending::add;
-    c.draws = geometry_set::hair;
-    c.clears = {zero, zero};
-    add(pass_step::resolve, "resolve", "resolve pass", pass_kind::fullscreen, -1, {"kbuffer", "frame"}, {"frame"}).state.blend =
-        blending::over;
-  }
-  if (smoke.on)
-    add(pass_step::particles, "particles", "particle pass", pass_kind::geometry, -1,
-        {gbuffer[0], smoke.baking ? "volume atlas" : smoke.shadowed_lights.empty() ? "scene" : "shadow layers", "frame"}, {"frame"})
-        .state.blend = blending::over;
+  if (!p.around_glass) frame_detail::add_layered(out, p, smoke);
   for (std::size_t k = 0; k < p.post.passes.size(); ++k) {
     const post_pass& pass = p.post.passes[k];
     std::vector<std::string> reads;

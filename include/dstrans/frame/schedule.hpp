@@ -46,11 +46,13 @@ enum class pass_step {
   resolve, particles, post
 };
 
-// A draw's fixed-function state. Blending `add` sums (ONE, ONE); `over` puts a premultiplied colour over
-// what is there, and multiplies alpha, which holds what the frame behind keeps (colour ONE, SRC_ALPHA;
-// alpha ZERO, ONE). Culling `front` draws a light volume's back faces.
+// A draw's fixed-function state. Blending `add` sums (ONE, ONE); `over` puts a premultiplied colour, whose
+// alpha is what it keeps of what lies behind it, over what is there and keeps the target's alpha (colour
+// ONE, SRC_ALPHA; alpha ZERO, ONE); `layer` does the same and multiplies the target's alpha by the
+// source's, so that a layer cleared to (0, 0, 0, 1) ends holding what it keeps of what lies behind it
+// (alpha ZERO, SRC_ALPHA). Culling `front` draws a light volume's back faces.
 enum class depth_test { off, less, less_equal };
-enum class blending { off, add, over };
+enum class blending { off, add, over, layer };
 enum class culling { off, front };
 struct pass_state {
   depth_test depth = depth_test::off;

@@ -39,6 +39,7 @@ enum class slot {
   post_input,        // a post-processing pass: its input images and its parameters
   post_params,
   material_textures, // the scene's textures as one array (material_textures.hpp), for the geometry passes
+  glass_layers,      // the compose pass: what hair and particles lay behind and in front of the glass
 };
 
 // What a slot binds: sampled textures (a texture unit each on GL), a storage image, a uniform block, a
@@ -76,6 +77,7 @@ inline constexpr slot_desc slot_table[] = {
     {slot::post_input, "POST_INPUT", 32, 2, slot_kind::texture},
     {slot::post_params, "POST_PARAMS", 34, 1, slot_kind::uniform_block},
     {slot::material_textures, "MATERIAL_TEXTURES", 35, 1, slot_kind::texture},
+    {slot::glass_layers, "GLASS_LAYERS", 36, 2, slot_kind::texture},
 };
 
 // The first binding of slot `s`.
