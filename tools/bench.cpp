@@ -571,6 +571,47 @@ result<json> gltf_records(const scene& shelf, const render::options& base, const
   return records;
 }
 
+// Glass with hair or smoke on both sides of it (scenes "hair_panes" and "glass_room_smoke" in the results):
+// the thesis's method and the edge-aware reconstruction against depth peeling, each drawing the hair and
+// particles around its glass in depth order; errors over all pixels and over the glass of the peeled first
+// layer.
+template <class Draw>
+result<json> around_glass_records(const scene& s, const std::string& name, const render::options& base, const std::string& backend,
+                                  Draw&& draw) {
+  using T = render::technique;
+  render::options o = base;
+  o.method = T::peeling;
+  auto peeled = draw(s, o);
+  if (!peeled) return failure{peeled.error()};
+  const std::vector<bool> glass = render::glass_pixels(*peeled);
+  json records = json::array();
+  for (const char* technique : {"interlaced", "interlaced-edge-aware", "peeling"}) {
+    render::options with = o;
+    with.method = std::string(technique) == "peeling" ? T::peeling : T::interlaced;
+    with.reconstruct = std::string(technique) == "interlaced-edge-aware";
+    auto f = with.method == T::peeling ? result<render::frame>(*peeled) : draw(s, with);
+    if (!f) return failure{f.error()};
+    const render::frame_plan plan = render::plan_of(s, with);
+    int bytes = plan.pipeline.bytes_per_pixel;  // peeling keeps a second G-buffer and light buffer, nothing else twice
+    for (const planned_target& t : plan.pipeline.targets)
+      if (with.method == T::peeling && (t.name.rfind("gbuffer.", 0) == 0 || t.name.rfind("light.", 0) == 0)) bytes += t.bytes_per_pixel;
+    records.push_back(render::with_errors(
+        {{"technique", technique},
+         {"scene", name},
+         {"backend", backend},
+         {"settings", {{"lights", s.lights.size()}, {"width", with.width}, {"height", with.height}, {"frames", f->frames},
+                       {"hair", plan.on.has(effect::many_layers)}, {"particle_systems", s.particles.size()}}},
+         {"frame_ms", f->frame_ms},
+         {"frame_ms_spread", f->frame_ms_spread},
+         {"pass_ms", f->pass_ms},
+         {"peeling_ms", peeled->frame_ms},
+         {"bytes_per_pixel", bytes},
+         {"reference", "deferred depth peeling"}},
+        render::compare(f->final_image, peeled->final_image, glass)));
+  }
+  return records;
+}
+
 // One side of a paired comparison: its options, how its record names it, and the timers compared (the
 // whole frame where none are named).
 struct paired_side {
@@ -1013,7 +1054,9 @@ int bench(std::vector<std::string> args) {
     auto hair = load_scene(*shipped + "/scenes/hair.json");
     auto smoke = load_scene(*shipped + "/scenes/smoke.json");
     auto shelf = load_scene(*shipped + "/scenes/glass_shelf.gltf");
-    for (const auto* loaded : {&hair, &smoke, &shelf})
+    auto hair_panes = load_scene(*shipped + "/scenes/hair_panes.json");
+    auto room_smoke = load_scene(*shipped + "/scenes/glass_room_smoke.json");
+    for (const auto* loaded : {&hair, &smoke, &shelf, &hair_panes, &room_smoke})
       if (!*loaded) {
         std::fprintf(stderr, "dstrans bench: %s\n", loaded->error().c_str());
         return 1;
@@ -1116,6 +1159,15 @@ int bench(std::vector<std::string> args) {
         return 1;
       }
       for (const json& r : *gltf) results.push_back(r);
+      for (const auto& [name, s] : {std::pair<const char*, scene>{"hair_panes", *hair_panes},
+                                    std::pair<const char*, scene>{"glass_room_smoke", with_lights(*room_smoke, fixed)}}) {
+        auto around = around_glass_records(s, name, shadowed, b, draw);
+        if (!around) {
+          std::fprintf(stderr, "dstrans bench: %s on %s: %s\n", name, b.c_str(), around.error().c_str());
+          return 1;
+        }
+        for (const json& r : *around) results.push_back(r);
+      }
       auto soft = soft_shadow_records(scenes.at("glass_room"), base, b, draw);
       if (!soft) {
         std::fprintf(stderr, "dstrans bench: soft shadows on %s: %s\n", b.c_str(), soft.error().c_str());
