@@ -134,6 +134,31 @@ TEST_CASE("the shadow pass samples textures only where a texture can change a sh
   CHECK_FALSE(render::textured_shadows(unused));
 }
 
+TEST_CASE("rough refraction is planned only where a deferred technique refracts", "[pipeline][refraction]") {
+  const scene refractive = effect_scene(rung::refractive), glass = effect_scene(rung::glass);
+  render::options o;
+  o.rough_refraction = true;
+  auto rough = [](const scene& s, const render::options& with) {
+    const render::frame_plan p = render::plan_of(s, with);
+    const planned_pass* compose = p.pipeline.pass("compose");
+    REQUIRE(compose);
+    const bool planned = std::count(compose->switches.begin(), compose->switches.end(), "DST_ROUGH_REFRACTION") == 1;
+    CHECK(planned == render::rough_refraction(with, p.on));
+    return planned;
+  };
+  for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward,
+                              render::technique::forward_depth}) {
+    o.method = t;
+    INFO(render::technique_name(t));
+    // Forward rendering's blend has no exponent to read the roughness back from.
+    CHECK(rough(refractive, o) == !render::is_forward(t));
+    CHECK_FALSE(rough(glass, o));  // glass that does not refract
+    render::options off = o;
+    off.rough_refraction = false;
+    CHECK_FALSE(rough(refractive, off));
+  }
+}
+
 TEST_CASE("the run-time plan of a set is the compile-time plan of that set", "[pipeline]") {
   const pipeline_plan a = plan_pipeline(effect_set<effect::transparency, effect::shadows>::value);
   const pipeline_plan b = pipeline<effect_set<effect::transparency, effect::shadows>>::plan();

@@ -636,17 +636,17 @@ TEST_CASE("an opaque object in front of a glass pane never shows inside the pane
         }
       CHECK(box_pixels > 50);
       for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward_depth})
-      for (bool rough : {false, true}) {  // the glass's exponent 96 is rough: each blur tap rejects by depth too
-        o.method = t;
-        o.rough_refraction = rough;
-        auto r = coloured(b, o, {1.0f, 0.0f, 0.0f}), u = coloured(b, o, {0.0f, 0.0f, 1.0f});
-        INFO(name(b) << ", strength " << strength << ", technique " << int(t) << ", rough " << rough);
-        std::size_t leaks = 0;
-        for (std::size_t i = 0; i < box.size(); ++i)
-          if (!box[i])
-            for (std::size_t c = 0; c < 3; ++c) leaks += r->final_image.rgba[4 * i + c] != u->final_image.rgba[4 * i + c];
-        CHECK(leaks == 0);
-      }
+        for (bool rough : {false, true}) {  // the glass's exponent 96 is rough: each blur tap rejects by depth too
+          o.method = t;
+          o.rough_refraction = rough;
+          auto r = coloured(b, o, {1.0f, 0.0f, 0.0f}), u = coloured(b, o, {0.0f, 0.0f, 1.0f});
+          INFO(name(b) << ", strength " << strength << ", technique " << int(t) << ", rough " << rough);
+          std::size_t leaks = 0;
+          for (std::size_t i = 0; i < box.size(); ++i)
+            if (!box[i])
+              for (std::size_t c = 0; c < 3; ++c) leaks += r->final_image.rgba[4 * i + c] != u->final_image.rgba[4 * i + c];
+          CHECK(leaks == 0);
+        }
     }
 }
 
