@@ -1647,6 +1647,35 @@ TEST_CASE("hair and smoke behind a pane are tinted by it, in front of it they ar
       }
 }
 
+// Until an exact reference exists, depth peeling (which draws hair and particles around its own two layers)
+// is the one to compare with: the hair and smoke add nothing to the single layer's own error against it.
+TEST_CASE("hair and smoke around panes add nothing to the single layer's error against depth peeling", "[render][glass_layers]") {
+  auto error = [](const scene& s) {
+    options o = small(160, 90);
+    o.method = render::technique::peeling;
+    auto peeled = draw(backend::gl, s, o);
+    o.method = render::technique::interlaced;
+    auto single = draw(backend::gl, s, o);
+    REQUIRE((peeled && single));
+    return render::compare(single->final_image, peeled->final_image, render::glass_pixels(*peeled));
+  };
+  if (!gl::headless_context::create()) return;
+  for (const char* file : {"hair_panes.json", "glass_room_smoke.json"}) {
+    const scene s = example(file);
+    scene bare = s;  // the panes alone
+    bare.particles.clear();
+    bare.objects.erase(std::remove_if(bare.objects.begin(), bare.objects.end(), [&](const object& ob) { return s.materials[ob.material].hair; }),
+                       bare.objects.end());
+    const render::image_error with = error(s), without = error(bare);
+    INFO(file << ": RMSE " << with.all.rmse << " (without hair and smoke " << without.all.rmse << "), on glass " << with.masked.rmse
+              << " (" << without.masked.rmse << ")");
+    // Measured: 1.46 (2.76) and 3.57 (7.17) on hair_panes, 5.71 (6.08) and 8.59 (9.03) on glass_room_smoke:
+    // the hair and smoke hide some of the glass's own error.
+    CHECK(with.all.rmse < without.all.rmse + 1.5);
+    CHECK(with.masked.rmse < without.masked.rmse + 2.0);
+  }
+}
+
 TEST_CASE("hair and smoke around panes: GL and Vulkan draw the same frame", "[render][glass_layers][gl][vk]") {
   options o = small(160, 90);
   std::vector<scene> scenes{example("hair_panes.json"), example("glass_room_smoke.json")};
