@@ -157,7 +157,7 @@ std::size_t mismatches(const frame& f, const std::function<glm::vec3(glm::ivec2)
 TEST_CASE("GL and Vulkan render the same image, at even and odd sizes, with every technique", "[render][gl][vk]") {
   const scene s = example("pane.json");
   for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward,
-                              render::technique::forward_depth})
+                              render::technique::forward_depth, render::technique::reference})
     for (glm::ivec2 size : {glm::ivec2(160, 90), glm::ivec2(161, 91)}) {
       options o = small(size.x, size.y);
       o.method = t;
@@ -1249,7 +1249,7 @@ TEST_CASE("a transparent pane seen from behind still shows, its normal turned to
 TEST_CASE("the hard_cases scene renders finite, non-negative buffers on both backends", "[render][hard_cases]") {
   const scene s = example("hard_cases.json");
   for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward,
-                              render::technique::forward_depth})
+                              render::technique::forward_depth, render::technique::reference})
     for (glm::ivec2 size : {glm::ivec2(160, 90), glm::ivec2(161, 91), glm::ivec2(7, 1), glm::ivec2(1, 7)})
       for (backend b : backends) {
         options o = small(size.x, size.y);
@@ -1688,6 +1688,110 @@ TEST_CASE("hair and smoke around panes: GL and Vulkan draw the same frame", "[re
     INFO("scene " << i);
     auto g = draw(backend::gl, scenes[i], o);
     auto v = draw(backend::vk, scenes[i], o);
+    if (!g || !v) return;
+    CHECK(rmse(g->final_image, v->final_image) < 1.0);
+  }
+}
+
+// Three panes stacked in front of a wall, lit by the ambient light alone (so that each fragment's colour is
+// its diffuse colour times the ambient), listed far to near or near to far.
+scene stacked_panes(bool near_first) {
+  scene s;
+  s.view.position = {0.0f, 0.0f, 4.0f};
+  s.view.target = {0.0f, 0.0f, 0.0f};
+  s.ambient = glm::vec3(1.0f);
+  s.materials = {{glm::vec3(0.2f, 0.6f, 0.3f), 1.0f, 0.0f, 16.0f, false},  // the wall
+                 {glm::vec3(1.0f, 0.1f, 0.1f), 0.5f, 0.0f, 16.0f, false},
+                 {glm::vec3(0.1f, 0.2f, 1.0f), 0.3f, 0.0f, 16.0f, false},
+                 {glm::vec3(0.9f, 0.9f, 0.1f), 0.7f, 0.0f, 16.0f, false}};
+  s.objects.push_back({shape_box({8.0f, 6.0f, 0.1f}), glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -2.0f}), 0});
+  std::vector<object> panes;
+  for (std::uint32_t k = 1; k <= 3; ++k)  // material k at z = -1.5 + 0.75 k: the first listed lies farthest
+    panes.push_back({shape_pane({2.0f, 2.0f}), glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -1.5f + 0.75f * float(k)}), k});
+  if (near_first) std::reverse(panes.begin(), panes.end());
+  s.objects.insert(s.objects.end(), panes.begin(), panes.end());
+  return s;
+}
+
+TEST_CASE("the exact reference blends stacked panes in depth order, whatever order they are drawn in", "[render][exact][gl][vk]") {
+  // Eq. 3.3 by hand, far to near, over the wall.
+  const scene far_first = stacked_panes(false);
+  glm::vec3 want = far_first.materials[0].diffuse;
+  for (std::size_t k = 1; k <= 3; ++k) want = want * (1.0f - far_first.materials[k].alpha) + far_first.materials[k].diffuse * far_first.materials[k].alpha;
+  options o = small(160, 90);
+  o.method = render::technique::reference;
+  for (backend b : {backend::gl, backend::vk})
+    for (bool near_first : {false, true}) {
+      auto f = draw(b, stacked_panes(near_first), o);
+      if (!f) continue;
+      INFO(name(b) << (near_first ? ", nearest listed first" : ", farthest listed first"));
+      CHECK(f->kbuffer_overflow == 0u);
+      for (int c = 0; c < 3; ++c) CHECK(std::abs(channel(f->final_image, {80, 45}, c) - int(std::lround(255.0f * want[c]))) <= 2);
+    }
+}
+
+TEST_CASE("the exact reference counts the fragments its lists could not take, and still draws them", "[render][exact]") {
+  options o = small(160, 90);
+  o.method = render::technique::reference;
+  const scene s = example("hair_panes.json");
+  auto full = draw(backend::gl, s, o);
+  if (!full) return;
+  CHECK(full->kbuffer_overflow == 0u);
+  o.kbuffer_nodes = 256;
+  auto short_pool = draw(backend::gl, s, o);
+  REQUIRE(short_pool);
+  CHECK(short_pool->kbuffer_overflow > 0u);
+  // The overflow is blended out of order behind the lists, not dropped: the image stays close.
+  CHECK(rmse(short_pool->final_image, full->final_image) < 20.0);
+  CHECK(rmse(short_pool->final_image, full->final_image) > 0.0);
+}
+
+// Each deferred technique against the exact reference on glass with hair and smoke around it, refraction
+// off (the reference does not refract); on glass_room alone, the forward techniques too.
+TEST_CASE("every technique is within a stated RMSE of the exact reference", "[render][exact]") {
+  if (!gl::headless_context::create()) return;
+  options o = small(160, 90);
+  o.refraction = 0.0f;
+  o.method = render::technique::reference;
+  struct bound {
+    const char* file;
+    render::technique method;
+    double rmse;
+  };
+  using T = render::technique;
+  // Measured (GL, 160x90): hair_panes 1.50 and 0.37; glass_room_smoke 7.39 and 5.52; glass_room 6.02, 3.02,
+  // 6.09 and 6.09. What is left is each technique's own approximation: one layer of glass (a bottle's back
+  // face and the panes behind the nearest are not seen), interlacing's halved resolution.
+  const bound bounds[] = {{"hair_panes.json", T::interlaced, 2.5},       {"hair_panes.json", T::peeling, 1.0},
+                          {"glass_room_smoke.json", T::interlaced, 8.5}, {"glass_room_smoke.json", T::peeling, 6.5},
+                          {"glass_room.json", T::interlaced, 7.0},       {"glass_room.json", T::peeling, 4.0},
+                          {"glass_room.json", T::forward, 7.0},          {"glass_room.json", T::forward_depth, 7.0}};
+  std::map<std::string, frame> exact;
+  for (const bound& b : bounds) {
+    const scene s = example(b.file);
+    if (!exact.count(b.file)) {
+      auto e = draw(backend::gl, s, o);
+      REQUIRE(e);
+      REQUIRE(e->kbuffer_overflow == 0u);
+      exact[b.file] = *e;
+    }
+    options with = o;
+    with.method = b.method;
+    auto f = draw(backend::gl, s, with);
+    REQUIRE(f);
+    const double e = rmse(f->final_image, exact.at(b.file).final_image);
+    INFO(b.file << ", " << render::technique_name(b.method) << ": RMSE " << e);
+    CHECK(e < b.rmse);
+  }
+}
+
+TEST_CASE("the exact reference: GL and Vulkan draw the same frame", "[render][exact][gl][vk]") {
+  options o = small(160, 90);
+  o.method = render::technique::reference;
+  for (const char* file : {"hair_panes.json", "glass_room_smoke.json"}) {
+    INFO(file);
+    auto g = draw(backend::gl, example(file), o);
+    auto v = draw(backend::vk, example(file), o);
     if (!g || !v) return;
     CHECK(rmse(g->final_image, v->final_image) < 1.0);
   }

@@ -44,7 +44,7 @@ TEST_CASE("every example scene's schedule reads what it wrote before, under ever
     if (entry.path().extension() != ".json") continue;
     const scene s = example(entry.path().filename().string());
     for (render::technique t : {render::technique::interlaced, render::technique::peeling, render::technique::forward,
-                                render::technique::forward_depth})
+                                render::technique::forward_depth, render::technique::reference})
       for (render::shadow_mode m : render::all_lookups)
         for (auto particles : {render::options::particle_light::six_axes, render::options::particle_light::forward}) {
           render::options o;
@@ -92,6 +92,47 @@ TEST_CASE("a schedule has no pass for an effect the frame does not draw", "[sche
   CHECK(count(forward, "blend") == 1);
 }
 
+TEST_CASE("the exact reference: opaque surfaces deferred, every transparent fragment into the lists, no refraction", "[schedule][exact]") {
+  render::options o;
+  o.method = render::technique::reference;
+  for (const char* file : {"hair_panes.json", "glass_room_smoke.json", "pane.json", "smoke.json"}) {
+    INFO(file);
+    const scene s = example(file);
+    const render::frame_plan p = render::plan_of(s, o);
+    CHECK(p.exact);
+    CHECK(p.lists);
+    CHECK_FALSE(p.around_glass);
+    CHECK_FALSE(p.on.has(effect::refraction));
+    CHECK(p.layers == 1);
+    const frame_schedule sched = render::schedule_of(s, p, o);
+    CHECK(count(sched, "capture") == 1);
+    CHECK(count(sched, "resolve") == 1);
+    CHECK(count(sched, "particles") == (s.particles.empty() ? 0u : 1u));
+    CHECK(count(sched, "bake") == 0);  // its particles are lit per fragment
+    int capture = -1, compose = -1, resolve = -1;
+    for (std::size_t k = 0; k < sched.passes.size(); ++k) {
+      const scheduled_pass& pass = sched.passes[k];
+      if (pass.timer == "capture") capture = int(k);
+      if (pass.timer == "compose") compose = int(k);
+      if (pass.timer == "resolve") resolve = int(k);
+      if (pass.timer == "capture") CHECK(pass.draws == geometry_set::everything);  // glass and hair alike
+      if (pass.timer == "particles") CHECK(pass.writes == std::vector<std::string>{"kbuffer"});
+    }
+    CHECK((compose < capture && capture < resolve));  // over the composed opaque frame
+    CHECK(sched.passes[std::size_t(resolve)].state.blend == blending::over);
+    // Every shadowed light's map is copied into its layer, which the capture reads.
+    const bool shadowed = p.uses(render::shadow_mode::opaque) || p.uses(render::shadow_mode::transparent);
+    CHECK(p.shadow_layers == shadowed);
+    CHECK(count(sched, "shadow layers") == (shadowed ? render::particle_plan_of(s, p, o).shadowed_lights.size() : 0u));
+  }
+  // A scene with nothing transparent is plain deferred shading: no lists.
+  scene opaque = example("pane.json");
+  for (material& m : opaque.materials) m.alpha = 1.0f;
+  const render::frame_plan plain = render::plan_of(opaque, o);
+  CHECK_FALSE(plain.lists);
+  CHECK(count(render::schedule_of(opaque, plain, o), "capture") == 0);
+}
+
 TEST_CASE("hair and particles are drawn around the glass only in a deferred frame that has glass", "[schedule][glass_layers]") {
   const scene hair = example("hair.json"), smoke = example("smoke.json"), hair_and_panes = example("hair_panes.json");
   auto index_of = [](const frame_schedule& s, const std::string& timer) {
@@ -125,7 +166,7 @@ TEST_CASE("hair and particles are drawn around the glass only in a deferred fram
       const std::vector<std::string>& reads = sched.passes[std::size_t(compose)].reads;
       CHECK(std::find(reads.begin(), reads.end(), "glass layers") != reads.end());
       // Two RGBA16F targets, as the renderers make them, counted in the frame's bytes a pixel.
-      const std::vector<target_desc> made = render::glass_layer_targets();
+      const std::vector<target_desc> made = glass_layer_targets();
       REQUIRE(made.size() == 2);
       for (const char* name : {"glass.behind", "glass.front"}) {
         const planned_target* target = p.pipeline.target(name);

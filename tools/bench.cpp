@@ -99,8 +99,37 @@ std::pair<int, int> targets_and_bytes(render::technique t) {
       }
       return {n, bytes};
     }
+    case render::technique::reference: {  // the opaque layer, the lists' heads, nodes and tail targets
+      int n = gbuffer + light + 1, bytes = gbuffer_bytes + light_bytes + 4 + kbuffer_nodes_per_pixel * kbuffer_node_bytes;
+      for (const target_desc& d : kbuffer_tail_targets()) {
+        ++n;
+        bytes += info(d.fmt).bytes_per_pixel;
+      }
+      return {n, bytes};
+    }
   }
   return {0, 0};
+}
+
+// How records name the exact reference (technique reference), which the error figures under "exact" are
+// against.
+constexpr const char* exact_reference = "exact: every transparent fragment in per-pixel lists, sorted, shaded fully, no refraction";
+
+// The figures of `f` against `exact`, a frame of the exact reference with f's scene and settings, over all
+// pixels and over `mask`; where the reference's lists overflowed it is not used: its overflow, no figures.
+json exact_errors(const render::frame& f, const render::frame& exact, const std::vector<bool>& mask) {
+  if (exact.kbuffer_overflow > 0)
+    return {{"overflow", exact.kbuffer_overflow}, {"rmse", nullptr}, {"rmse_transparent", nullptr}, {"flip", nullptr}};
+  const render::image_error e = render::compare(f.final_image, exact.final_image, mask);
+  return {{"overflow", 0}, {"rmse", e.all.rmse}, {"rmse_transparent", e.masked.rmse}, {"flip", e.all.flip}};
+}
+
+// The options of one frame of the exact reference with the settings of `o`: its image is compared, not timed.
+render::options exact_options(render::options o) {
+  o.method = render::technique::reference;
+  o.frames = 1;
+  o.force = {};
+  return o;
 }
 
 // The scene with only its first `n` spot lights (the thesis lit its scene with spot lights).
@@ -573,8 +602,8 @@ result<json> gltf_records(const scene& shelf, const render::options& base, const
 
 // Glass with hair or smoke on both sides of it (scenes "hair_panes" and "glass_room_smoke" in the results):
 // the thesis's method and (not `quick`) the edge-aware reconstruction against depth peeling, each drawing
-// the hair and particles around its glass in depth order; errors over all pixels and over the glass of the
-// peeled first layer.
+// the hair and particles around its glass in depth order, and the exact reference (one frame); errors over
+// all pixels and over the glass of the peeled first layer, against peeling and against the exact reference.
 template <class Draw>
 result<json> around_glass_records(const scene& s, const std::string& name, const render::options& base, bool quick,
                                   const std::string& backend, Draw&& draw) {
@@ -584,18 +613,22 @@ result<json> around_glass_records(const scene& s, const std::string& name, const
   auto peeled = draw(s, o);
   if (!peeled) return failure{peeled.error()};
   const std::vector<bool> glass = render::glass_pixels(*peeled);
+  auto exact = draw(s, exact_options(o));
+  if (!exact) return failure{exact.error()};
   json records = json::array();
-  for (const char* technique : {"interlaced", "interlaced-edge-aware", "peeling"}) {
+  for (const char* technique : {"interlaced", "interlaced-edge-aware", "peeling", "reference"}) {
     if (quick && std::string(technique) == "interlaced-edge-aware") continue;  // the glTF section times it
     render::options with = o;
-    with.method = std::string(technique) == "peeling" ? T::peeling : T::interlaced;
-    with.reconstruct = std::string(technique) == "interlaced-edge-aware";
-    auto f = with.method == T::peeling ? result<render::frame>(*peeled) : draw(s, with);
+    const std::string named = technique;
+    with.method = named == "peeling" ? T::peeling : named == "reference" ? T::reference : T::interlaced;
+    with.reconstruct = named == "interlaced-edge-aware";
+    auto f = with.method == T::peeling ? result<render::frame>(*peeled) : with.method == T::reference ? result<render::frame>(*exact) : draw(s, with);
     if (!f) return failure{f.error()};
     const render::frame_plan plan = render::plan_of(s, with);
     int bytes = plan.pipeline.bytes_per_pixel;  // peeling keeps a second G-buffer and light buffer, nothing else twice
     for (const planned_target& t : plan.pipeline.targets)
       if (with.method == T::peeling && (t.name.rfind("gbuffer.", 0) == 0 || t.name.rfind("light.", 0) == 0)) bytes += t.bytes_per_pixel;
+    if (with.method == T::reference) bytes = targets_and_bytes(T::reference).second;  // its lists, not the glass layers
     records.push_back(render::with_errors(
         {{"technique", technique},
          {"scene", name},
@@ -607,7 +640,9 @@ result<json> around_glass_records(const scene& s, const std::string& name, const
          {"pass_ms", f->pass_ms},
          {"peeling_ms", peeled->frame_ms},
          {"bytes_per_pixel", bytes},
-         {"reference", "deferred depth peeling"}},
+         {"reference", "deferred depth peeling"},
+         {"exact_reference", exact_reference},
+         {"exact", exact_errors(*f, *exact, glass)}},
         render::compare(f->final_image, peeled->final_image, glass)));
   }
   return records;
@@ -949,7 +984,7 @@ int bench(std::vector<std::string> args) {
         return o;
       };
       auto run = [&](render::technique t) -> result<render::frame> {
-        const render::options o = options_of(t);
+        const render::options o = t == T::reference ? exact_options(options_of(t)) : options_of(t);
 #ifdef DSTRANS_HAVE_GL
         if ((*g)->gl) return render::run_gl(s, o, pass_shaders());
 #endif
@@ -976,6 +1011,18 @@ int bench(std::vector<std::string> args) {
         references[key(rc)] = *ref;
       }
       const render::frame& ref = references.at(key(rc));
+      // The exact reference with the same lights and shadows (it never refracts), one frame.
+      config ec = rc;
+      ec.method = T::reference;
+      ec.refraction = false;
+      if (!references.count(key(ec))) {
+        auto exact = run(T::reference);
+        if (!exact) {
+          std::fprintf(stderr, "dstrans bench: %s: %s\n", key(ec).c_str(), exact.error().c_str());
+          return 1;
+        }
+        references[key(ec)] = *exact;
+      }
       // Leak pixels: techniques that reject by depth have none by construction; forward rendering without
       // depth is measured against the buffers of its depth variant at the same settings.
       json leak_pixels = {{"foreground_accepted", 0}, {"background_rejected", 0}};
@@ -1029,6 +1076,8 @@ int bench(std::vector<std::string> args) {
                                       {"bytes_per_pixel", bytes},
                                       {"render_targets", targets},
                                       {"reference", "deferred depth peeling"},
+                                      {"exact_reference", exact_reference},
+                                      {"exact", exact_errors(*f, references.at(key(ec)), glass)},
                                       {"leak_pixels", leak_pixels}}, e);
       results.push_back(rec);
       std::fprintf(stderr, "%s[%zu/%zu] %s: %.2f ms, RMSE %.2f%s", tty ? "\r\033[K" : "", k + 1, configs.size(), key(c).c_str(),

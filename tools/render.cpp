@@ -34,6 +34,8 @@ const char* const usage =
     "                           RGB, a coloured light's highlight in its colour (8 bytes)\n"
     "       [--k N] [--layers forward|deferred|tailless|cheap|wboit]   hair (S1): fragments shaded fully, and\n"
     "                           the rest (wboit: weighted blended OIT instead of lists)\n"
+    "       [--kbuffer-nodes N]   the per-pixel lists' pool, in nodes (default 16 a pixel); fragments past it\n"
+    "                           are blended out of order and counted (frame.json's kbuffer.overflow)\n"
     "       [--particles six-axes|four-axes|fourteen-axes|moments|forward] [--volume-cells N]   particle\n"
     "                           systems (S2): lit from light volumes of N (1 to 64) cells a side on six,\n"
     "                           four or fourteen axes or from the light's moments, or per fragment (the reference)\n"
@@ -53,7 +55,8 @@ const char* const usage =
     "       [--device N|NAME]   the GPU: by index or part of its name (Vulkan's physical devices, EGL's devices);\n"
     "                           `dstrans render --device list` lists them\n"
     "techniques: interlaced (the thesis's single-layer method), peeling (deferred depth peeling, 4.1.2),\n"
-    "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3)\n"
+    "            forward, forward-depth (multi-pass forward, refraction checked by alpha or depth, 4.1.3),\n"
+    "            reference (exact: every transparent fragment sorted per pixel and shaded fully, no refraction)\n"
     "writes DIR/final.png (after the chain), a PNG per buffer and per effect (post_NAME.png), and DIR/frame.json\n"
     "(which lists them); files are written whole and moved in at the end, and only an earlier run's are replaced\n";
 }  // namespace
@@ -82,6 +85,7 @@ int render(std::vector<std::string> args) {
     if (o.shadow_filter % 2 == 0) throw usage_error{"--shadow-filter must be odd (the receiver's texel and as many on each side)"};
     o.frames = to_int(take_option(args, "--frames", "1"), 1, 1000, "--frames");
     o.kbuffer_k = to_int(take_option(args, "--k", "8"), 1, 32, "--k");
+    o.kbuffer_nodes = std::uint32_t(to_int(take_option(args, "--kbuffer-nodes", "0"), 0, 1 << 30, "--kbuffer-nodes"));
     const std::string layers = take_option(args, "--layers", "deferred");
     if (layers == "forward") o.kbuffer_variant = render::options::layers::forward;
     else if (layers == "tailless") o.kbuffer_variant = render::options::layers::tailless;
@@ -137,8 +141,9 @@ int render(std::vector<std::string> args) {
     if (technique == "peeling") o.method = render::technique::peeling;
     else if (technique == "forward") o.method = render::technique::forward;
     else if (technique == "forward-depth") o.method = render::technique::forward_depth;
+    else if (technique == "reference") o.method = render::technique::reference;
     else if (technique != "interlaced")
-      throw usage_error{"unknown technique '" + technique + "' (known: interlaced, peeling, forward, forward-depth)"};
+      throw usage_error{"unknown technique '" + technique + "' (known: interlaced, peeling, forward, forward-depth, reference)"};
     if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
     // The folder is checked before any work: a run that cannot write its outputs stops here.
     auto dir = output_dir::open(out, "frame.json");
@@ -188,6 +193,10 @@ int render(std::vector<std::string> args) {
     }
     std::printf("dstrans render: %s on %s, %dx%d, %.2f ms: %s/final.png\n", args[0].c_str(), backend.c_str(), o.width, o.height,
                 f->frame_ms, out.c_str());
+    if (f->kbuffer_overflow > 0)
+      std::fprintf(stderr, "dstrans render: %u fragments found no node in the lists and were blended out of order%s "
+                   "(--kbuffer-nodes N enlarges the pool)\n", f->kbuffer_overflow,
+                   o.method == render::technique::reference ? ": this reference is not exact" : "");
     return 0;
   } catch (const usage_error& e) {
     std::fprintf(stderr, "dstrans render: %s\n%s", e.message.c_str(), usage);

@@ -110,6 +110,7 @@ struct renderer::impl {
   result<bool> make_programs();
   result<bool> make_fixed();
   void make_particles();
+  void make_shadow_layers();
   result<bool> make_sized();
   void destroy_sized();
 
@@ -118,10 +119,15 @@ struct renderer::impl {
   void bind_textures(int first, const gl::targets& t) const;  // t's textures on units first, first + 1, ...
   void bind_gbuffer(int first, const gl::targets& g) const;
   void bind_shadow_map() const;
+  void bind_shadow_layers() const;
   void bind_layers() const;
   void bind_frame_depths() const;
-  // Where the resolve and the particles draw: the composed frame, or the glass layers around the glass.
-  const gl::targets& layered_target() const { return plan.around_glass ? glass_layers : out.composed; }
+  // Where the resolve and the particles draw: the composed frame, the glass layers around the glass, or
+  // the exact reference's particles the tail targets beside the lists.
+  const gl::targets& layered_target(pass_step step) const {
+    if (plan.exact && step == pass_step::particles) return tail;
+    return plan.around_glass ? glass_layers : out.composed;
+  }
   void bake(GLuint prog, GLuint lights_buffer) const;
   void run_light(const scheduled_pass& pass) const;
   void run_post(const scheduled_pass& pass) const;
@@ -172,8 +178,8 @@ result<bool> renderer::impl::make_programs() {
                                                                                                   (vol ? " volume" : " fullscreen"))));
   }
   if (mode != shadow_mode::off) made.push_back(keep(shadow_prog, program(shadow_pass(sh, mode, plan.shadow_effects()), "shadow pass")));
-  if (plan.on.has(effect::many_layers) && !plan.forward) {
-    made.push_back(keep(capture_prog, program(capture_pass(sh, mode, o, plan.around_glass), "capture pass")));
+  if (plan.lists) {
+    made.push_back(keep(capture_prog, program(capture_pass(sh, mode, o, plan.around_glass, plan.on), "capture pass")));
     made.push_back(keep(resolve_prog, program(resolve_pass(sh, mode, o, plan.around_glass), "resolve pass")));
   }
   if (smoke.on) {
@@ -245,6 +251,7 @@ result<bool> renderer::impl::make_fixed() {
     }
   }
   if (smoke.on) make_particles();
+  if (plan.shadow_layers) make_shadow_layers();
   for (const post_pass& pass : plan.post.passes) {
     post_blocks.push_back(make_buffer(std::vector<glm::vec4>{glm::vec4(pass.params[0], pass.params[1], pass.params[2], pass.params[3])},
                                       "post " + pass.name));
@@ -254,7 +261,7 @@ result<bool> renderer::impl::make_fixed() {
 }
 
 // The atlas (the bake adds into it, the particles sample it), each region's bake block, the lights per
-// dispatch; the particles' regions and quads; the shadow maps' layers for the reference.
+// dispatch; the particles' regions and quads.
 void renderer::impl::make_particles() {
   const volume_atlas& atlas = smoke.atlas;
   const glm::ivec3 atlas_size = glm::max(atlas.size, glm::ivec3(1));  // a forced effect with no system
@@ -276,15 +283,6 @@ void renderer::impl::make_particles() {
     glTextureParameteri(out.volume_atlas, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTextureParameteri(out.volume_atlas, wrap, GL_CLAMP_TO_EDGE);
     label(GL_TEXTURE, out.volume_atlas, "volume atlas");
-  } else if (plan.shadows != shadow_mode::off && !smoke.shadowed_lights.empty()) {
-    for (std::size_t t = 0; t < shadow_map.textures.size(); ++t) {
-      glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &shadow_layers[t]);
-      textures.push_back(shadow_layers[t]);
-      glTextureStorage3D(shadow_layers[t], 1, t == 0 ? GL_R32F : GL_RGBA8, o.shadow_size, o.shadow_size,
-                         GLsizei(smoke.shadowed_lights.size()));
-      label(GL_TEXTURE, shadow_layers[t], t == 0 ? "shadow layers depth" : "shadow layers colour");
-    }
-    for (std::size_t k = 0; k < smoke.shadowed_lights.size(); ++k) shadow_layer_of[int(smoke.shadowed_lights[k].cos_inner.y)] = GLint(k);
   }
   particle_regions = make_buffer(render::particle_regions(description, smoke), "particle regions");
   std::size_t count = 0;
@@ -302,6 +300,17 @@ void renderer::impl::make_particles() {
   glVertexArrayAttribFormat(particle_vao, 0, 3, GL_FLOAT, GL_FALSE, GLuint(offsetof(particle_vertex, position)));
   glVertexArrayAttribIFormat(particle_vao, 1, 1, GL_UNSIGNED_INT, GLuint(offsetof(particle_vertex, system)));
   glVertexArrayAttribFormat(particle_vao, 2, 4, GL_FLOAT, GL_FALSE, GLuint(offsetof(particle_vertex, corner)));
+}
+
+// The shadow maps' layers (frame_plan::shadow_layers), one a shadowed light in light order.
+void renderer::impl::make_shadow_layers() {
+  for (std::size_t t = 0; t < shadow_map.textures.size(); ++t) {
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &shadow_layers[t]);
+    textures.push_back(shadow_layers[t]);
+    glTextureStorage3D(shadow_layers[t], 1, t == 0 ? GL_R32F : GL_RGBA8, o.shadow_size, o.shadow_size, GLsizei(smoke.shadowed_lights.size()));
+    label(GL_TEXTURE, shadow_layers[t], t == 0 ? "shadow layers depth" : "shadow layers colour");
+  }
+  for (std::size_t k = 0; k < smoke.shadowed_lights.size(); ++k) shadow_layer_of[int(smoke.shadowed_lights[k].cos_inner.y)] = GLint(k);
 }
 
 result<bool> renderer::impl::make_sized() {
@@ -334,7 +343,7 @@ result<bool> renderer::impl::make_sized() {
     registry[name] = t->textures[0];
   }
   out.output = plan.post.passes.empty() ? &out.composed : &out.post.at(plan.post.output);
-  if (plan.on.has(effect::many_layers) && !plan.forward) {
+  if (plan.lists) {
     glCreateTextures(GL_TEXTURE_2D, 1, &out.kbuffer_heads);
     glTextureStorage2D(out.kbuffer_heads, 1, GL_R32UI, o.width, o.height);
     label(GL_TEXTURE, out.kbuffer_heads, "k-buffer heads");
@@ -379,6 +388,11 @@ void renderer::impl::bind_gbuffer(int first, const gl::targets& g) const {
 }
 
 void renderer::impl::bind_shadow_map() const { bind_textures(binding(slot::shadow_map), shadow_map); }
+
+void renderer::impl::bind_shadow_layers() const {
+  for (GLuint t = 0; t < 2; ++t)
+    if (shadow_layers[t]) glBindTextureUnit(GLuint(binding(slot::shadow_layers)) + t, shadow_layers[t]);
+}
 
 // What the k-buffer passes read and write: the lists, the G-buffer, the shadow map.
 void renderer::impl::bind_layers() const {
@@ -538,14 +552,15 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
       clear(pass, tail);
       apply(pass.state);
       bind_layers();
+      bind_shadow_layers();
       glUseProgram(capture_prog);
       draw(pass);
       break;
     }
     case pass_step::resolve:
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-      bind(layered_target());
-      clear(pass, layered_target());
+      bind(layered_target(pass.step));
+      clear(pass, layered_target(pass.step));
       apply(pass.state);
       bind_layers();
       for (GLuint t = 0; t < 2; ++t) glBindTextureUnit(GLuint(binding(slot::kbuffer_tail)) + t, tail.textures[t]);
@@ -554,14 +569,14 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
       break;
     case pass_step::particles:
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-      bind(layered_target());
-      clear(pass, layered_target());
+      bind(layered_target(pass.step));
+      clear(pass, layered_target(pass.step));
       apply(pass.state);
-      bind_frame_depths();
+      if (plan.exact) bind_layers();
+      else bind_frame_depths();
       if (out.volume_atlas) glBindTextureUnit(GLuint(binding(slot::volume_atlas)), out.volume_atlas);
       if (smoke.shadows != shadow_mode::off) bind_shadow_map();
-      for (GLuint t = 0; t < 2; ++t)
-        if (shadow_layers[t]) glBindTextureUnit(GLuint(binding(slot::shadow_layers)) + t, shadow_layers[t]);
+      bind_shadow_layers();
       glUseProgram(particle_prog);
       glBindVertexArray(particle_vao);
       glDrawArrays(GL_TRIANGLES, 0, GLsizei(particle_vertices));

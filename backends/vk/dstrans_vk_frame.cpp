@@ -231,6 +231,7 @@ struct renderer::impl {
                               const std::vector<format>& lit_formats, const std::vector<format>& final_formats);
   result<bool> make_fixed();
   result<bool> make_particles();
+  result<bool> make_shadow_layers();
   result<bool> make_sized();
   void destroy_sized();
   result<bool> make_sets();
@@ -345,10 +346,11 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
   made.push_back(graphics(compose, plan.forward ? forward_pass(sh, forward_stage::blend, plan.forward_depth, shadow_mode::off, plan.on)
                                                 : compose_pass(sh, plan.on, o),
                           final_formats, plan.forward ? "forward blend pass" : "compose pass"));
-  if (plan.on.has(effect::many_layers) && !plan.forward) {
-    pipeline_state st = without_texture_coordinates(scene_state);  // hair takes its factors alone
+  if (plan.lists) {
+    // Hair takes its factors alone; the exact reference's glass samples its textures.
+    pipeline_state st = plan.exact ? scene_state : without_texture_coordinates(scene_state);
     st.additive = true;
-    made.push_back(graphics(capture, capture_pass(sh, mode, o, plan.around_glass), formats_of(kbuffer_tail_targets()), "capture pass", st));
+    made.push_back(graphics(capture, capture_pass(sh, mode, o, plan.around_glass, plan.on), formats_of(kbuffer_tail_targets()), "capture pass", st));
     pipeline_state rs;
     rs.transmit = true;
     rs.transmit_alpha = plan.around_glass;
@@ -367,13 +369,15 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
       bake[shadowed] = {{nullptr, *c}, *p};
     }
     pipeline_state st;
-    st.transmit = true;  // colour premultiplied, and in alpha what the frame behind keeps
+    st.transmit = !plan.exact;  // colour premultiplied, and in alpha what the frame behind keeps
     st.transmit_alpha = plan.around_glass;
+    st.additive = plan.exact;  // the exact reference's into the lists, their overflow added to the tail
     st.bindings = {{0, sizeof(particle_vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
     st.attributes = {attribute(0, 0, VK_FORMAT_R32G32B32_SFLOAT, std::uint32_t(offsetof(particle_vertex, position))),
                      attribute(1, 0, VK_FORMAT_R32_UINT, std::uint32_t(offsetof(particle_vertex, system))),
                      attribute(2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, std::uint32_t(offsetof(particle_vertex, corner)))};
-    made.push_back(graphics(particle, particle_pass(sh, smoke.shadows, o, plan.around_glass), layered_formats, "particle pass", st));
+    made.push_back(graphics(particle, particle_pass(sh, smoke.shadows, o, plan.around_glass),
+                            plan.exact ? formats_of(kbuffer_tail_targets()) : layered_formats, "particle pass", st));
   }
   post.resize(plan.post.passes.size());
   for (std::size_t k = 0; k < post.size(); ++k)
@@ -461,11 +465,13 @@ result<bool> renderer::impl::make_fixed() {
   qci.queryCount = queries_per_frame * std::uint32_t(slots);
   if (vkCreateQueryPool(dev.ctx().device, &qci, dev.ctx().allocator, &queries) != VK_SUCCESS) return failure{"no timestamp query pool"};
   dev.name(VK_OBJECT_TYPE_QUERY_POOL, std::uint64_t(queries), "frame timestamps");
+  if (plan.shadow_layers)
+    if (auto ok = make_shadow_layers(); !ok) return ok;
   return smoke.on ? make_particles() : result<bool>(true);
 }
 
 // The atlas (the bake adds into it, the particles sample it), each region's bake block, the lights per
-// dispatch; the particles' regions and quads; the shadow maps' layers for the reference.
+// dispatch; the particles' regions and quads.
 result<bool> renderer::impl::make_particles() {
   const volume_atlas& a = smoke.atlas;
   const VkBufferUsageFlags storage_use = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -493,15 +499,19 @@ result<bool> renderer::impl::make_particles() {
     if (!img) return failure{img.error()};
     out.volume_atlas = *img;
     out.volume_atlas_size = size;
-  } else if (plan.shadows != shadow_mode::off && !smoke.shadowed_lights.empty()) {
-    for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) {
-      auto img = dev.make_sampled_image(VkFormat(info(shadow_map.formats[t]).vk_format), VK_IMAGE_VIEW_TYPE_2D_ARRAY, o.shadow_size,
-                                        o.shadow_size, int(smoke.shadowed_lights.size()), t ? "shadow layers colour" : "shadow layers depth");
-      if (!img) return failure{img.error()};
-      shadow_layers[t] = *img;
-    }
-    for (std::size_t k = 0; k < smoke.shadowed_lights.size(); ++k) shadow_layer_of[int(smoke.shadowed_lights[k].cos_inner.y)] = std::uint32_t(k);
   }
+  return true;
+}
+
+// The shadow maps' layers (frame_plan::shadow_layers), one a shadowed light in light order.
+result<bool> renderer::impl::make_shadow_layers() {
+  for (std::size_t t = 0; t < shadow_map.colors.size(); ++t) {
+    auto img = dev.make_sampled_image(VkFormat(info(shadow_map.formats[t]).vk_format), VK_IMAGE_VIEW_TYPE_2D_ARRAY, o.shadow_size,
+                                      o.shadow_size, int(smoke.shadowed_lights.size()), t ? "shadow layers colour" : "shadow layers depth");
+    if (!img) return failure{img.error()};
+    shadow_layers[t] = *img;
+  }
+  for (std::size_t k = 0; k < smoke.shadowed_lights.size(); ++k) shadow_layer_of[int(smoke.shadowed_lights[k].cos_inner.y)] = std::uint32_t(k);
   return true;
 }
 
@@ -530,7 +540,7 @@ result<bool> renderer::impl::make_sized() {
     out.post[name] = *t;
   }
   out.output = plan.post.passes.empty() ? &out.composed : &out.post.at(plan.post.output);
-  if (plan.on.has(effect::many_layers) && !plan.forward) {
+  if (plan.lists) {
     auto t = dev.make_targets(kbuffer_tail_targets(), o.width, o.height, "k-buffer tail", false);
     if (!t) return failure{t.error()};
     tail = *t;
@@ -661,9 +671,9 @@ bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const
       b.images[binding(slot::volume_atlas)] = &out.volume_atlas;
       b.samplers[binding(slot::volume_atlas)] = linear_sampler;
     }
-    for (int t = 0; t < 2; ++t)
-      if (shadow_layers[t].view) b.images[binding(slot::shadow_layers) + t] = &shadow_layers[t];
   }
+  for (int t = 0; t < 2; ++t)
+    if (shadow_layers[t].view) b.images[binding(slot::shadow_layers) + t] = &shadow_layers[t];
   if (pass.step == pass_step::post) {
     const post_pass& p = plan.post.passes[std::size_t(pass.index)];
     b.buffers[binding(slot::post_params)] = post_blocks[std::size_t(pass.index)].handle;
@@ -798,8 +808,9 @@ const vk::targets* renderer::impl::attachments(const scheduled_pass& pass) const
     case pass_step::light: return &out.light_buffers[std::size_t(pass.index)];
     case pass_step::compose:
     case pass_step::blend: return &out.composed;
-    case pass_step::resolve:
-    case pass_step::particles: return plan.around_glass ? &glass_layers : &out.composed;
+    case pass_step::resolve: return plan.around_glass ? &glass_layers : &out.composed;
+    // The exact reference's particles go into the lists, their overflow into the tail targets.
+    case pass_step::particles: return plan.exact ? &tail : plan.around_glass ? &glass_layers : &out.composed;
     case pass_step::capture: return &tail;
     case pass_step::post: return &out.post.at(plan.post.passes[std::size_t(pass.index)].output);
     case pass_step::bake:

@@ -72,6 +72,17 @@ constexpr bool around_glass(effects e) {
 // The switch of the passes that draw around the glass (around_glass).
 inline constexpr const char* around_glass_switch = "DST_AROUND_GLASS";
 
+// The glass layers (around_glass): what lies behind a pixel's glass and what lies in front of it, each
+// premultiplied, with in alpha what it keeps of what lies behind it.
+inline std::vector<target_desc> glass_layer_targets() {
+  return {{format::rgba16f, {"behind.r", "behind.g", "behind.b", "behind.kept"}},
+          {format::rgba16f, {"front.r", "front.g", "front.b", "front.kept"}}};
+}
+// The k-buffer's tail targets: premultiplied colour and alpha, and optical depth, added out of order.
+inline std::vector<target_desc> kbuffer_tail_targets() {
+  return {{format::rgba16f, {"tail.r", "tail.g", "tail.b", "tail.alpha"}}, {format::r16f, {"optical_depth"}}};
+}
+
 // E: the effect set; G: the G-buffer's layout (Table 3.1's, or compact_gbuffer with depth from the depth
 // attachment, which the plan does not count, as every renderer has one).
 template <class E, class G = thesis_gbuffer>
@@ -143,7 +154,9 @@ struct pipeline {
     std::vector<std::string> layered{"output"};
     if constexpr (around_glass(set)) {
       layered = {"glass.behind", "glass.front"};
-      for (const std::string& t : layered) p.targets.push_back({t, info(format::rgba16f).name, info(format::rgba16f).bytes_per_pixel, false});
+      const std::vector<target_desc> made = glass_layer_targets();
+      for (std::size_t i = 0; i < made.size(); ++i)
+        p.targets.push_back({layered[i], info(made[i].fmt).name, info(made[i].fmt).bytes_per_pixel, false});
       compose_reads.insert(compose_reads.end(), layered.begin(), layered.end());
       compose.push_back(around_glass_switch);
     } else {
@@ -155,8 +168,9 @@ struct pipeline {
       const std::vector<std::string> lists{"kbuffer.heads", "kbuffer.nodes"}, tail{"kbuffer.tail", "kbuffer.transmittance"};
       p.targets.push_back({"kbuffer.heads", "R32UI", 4, false});
       p.targets.push_back({"kbuffer.nodes", "buffer", kbuffer_nodes_per_pixel * kbuffer_node_bytes, false});
-      p.targets.push_back({"kbuffer.tail", info(format::rgba16f).name, info(format::rgba16f).bytes_per_pixel, false});
-      p.targets.push_back({"kbuffer.transmittance", info(format::r16f).name, info(format::r16f).bytes_per_pixel, false});
+      const std::vector<target_desc> made = kbuffer_tail_targets();
+      for (std::size_t i = 0; i < made.size(); ++i)
+        p.targets.push_back({tail[i], info(made[i].fmt).name, info(made[i].fmt).bytes_per_pixel, false});
       std::vector<std::string> capture_writes = lists, resolve_reads = lists;
       capture_writes.insert(capture_writes.end(), tail.begin(), tail.end());
       resolve_reads.insert(resolve_reads.end(), tail.begin(), tail.end());

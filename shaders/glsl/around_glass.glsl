@@ -2,7 +2,10 @@
 // pixel shows none; y: the opaque surface), for the passes that draw hair and particles around the glass
 // (DST_AROUND_GLASS): from the pixel and its interlace partner, paired as the compose pass pairs them, or
 // from peeling's two layers (DST_PEELED). Without DST_AROUND_GLASS: no glass, and the G-buffer's depth.
+// dst_behind_glass: whether a fragment at window depth `depth` lies behind glass at `glass` (always, without
+// DST_AROUND_GLASS: a constant the compiler folds, so the passes pay nothing for the split).
 #ifdef DST_AROUND_GLASS
+bool dst_behind_glass(float depth, float glass) { return depth > glass; }
 #ifdef DST_PEELED
 vec2 dst_glass_and_opaque(ivec2 p) {
   dst_surface a = dst_gbuffer_read(p);
@@ -17,5 +20,6 @@ vec2 dst_glass_and_opaque(ivec2 p) {
 }
 #endif
 #else
+bool dst_behind_glass(float depth, float glass) { return true; }
 vec2 dst_glass_and_opaque(ivec2 p) { return vec2(-1.0f, dst_gbuffer_read(p).depth); }
 #endif

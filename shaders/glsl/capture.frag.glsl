@@ -20,15 +20,11 @@ void main() {
   tail = dst_tail_add(vec4(0.0f), vec4(lit, alpha)) * dst_wboit_weight(alpha, gl_FragCoord.z);
   return;
 #endif
-  uint node = atomicAdd(kbuffer.count, 1u);
-  if (node < kbuffer.capacity) {
-    uint next = imageAtomicExchange(dst_heads, p, node);
-    kbuffer.nodes[node] = uvec4(floatBitsToUint(gl_FragCoord.z), dst_pack_tangent(tangent), dst_pack_colour(colour_alpha), next);
+  if (dst_list_push(p, uvec3(floatBitsToUint(gl_FragCoord.z), dst_pack_tangent(tangent), dst_pack_colour(colour_alpha)))) {
     tail = vec4(0.0f);
     optical_depth = 0.0f;
     return;
   }
-  atomicAdd(kbuffer.overflow, 1u);
   vec3 shaded = dst_hair_lit(dst_world_position(p, gl_FragCoord.z), tangent, colour_alpha, false);
   tail = dst_tail_add(vec4(0.0f), vec4(shaded, alpha));
 }

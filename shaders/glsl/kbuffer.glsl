@@ -1,15 +1,6 @@
-// The k-buffer (TECHNIQUES.md S1): a list head per pixel and a pool of 16-byte nodes holding shading inputs
-// (depth bits, tangent, colour and alpha, the next node), and the hair's lighting, full (Eq. 2 with Eq. 1's
-// 25 Gaussian shadow taps) or cheap (diffuse, one tap). Shared by the capture and resolve passes.
-layout(binding = DST_SLOT_KBUFFER_HEADS, r32ui) uniform coherent uimage2D dst_heads;
-layout(std430, binding = DST_SLOT_KBUFFER_NODES) coherent buffer dst_kbuffer {
-  uint count;     // nodes asked for; past the capacity, fragments went to the tail targets instead
-  uint overflow;  // fragments that found no node
-  uint capacity;
-  uint unused;
-  uvec4 nodes[];
-} kbuffer;
-const uint dst_no_node = 0xffffffffu;
+// The hair's lighting (TECHNIQUES.md S1), full (Eq. 2 with Eq. 1's 25 Gaussian shadow taps) or cheap
+// (diffuse, one tap), for the k-buffer's passes, whose nodes (lists.glsl) hold its inputs: depth bits,
+// tangent, colour and alpha.
 
 #ifdef DST_SHADOWS
 // Eq. 1: the share of light that reaches `world` through the hair in front of it, from Gaussian taps of

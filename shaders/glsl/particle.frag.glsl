@@ -3,7 +3,8 @@
 // (DST_PARTICLES_FORWARD, the reference) by every light per fragment with Lambert's law, and laid over the
 // frame premultiplied, with in alpha the share of the frame that shows through (the blend keeps
 // colour = source + frame * alpha); around the glass (DST_AROUND_GLASS), into the glass layer on its side of
-// the pixel's glass, the other layer given nothing. A particle fades out near the opaque surface behind it.
+// the pixel's glass, the other layer given nothing; in the exact reference (DST_EXACT), into the pixel's
+// list (lists.glsl). A particle fades out near the opaque surface behind it.
 layout(location = 0) in vec3 world;
 layout(location = 1) in vec3 particle_corner_alpha;
 layout(location = 2) flat in vec4 particle_material;
@@ -14,6 +15,9 @@ layout(location = 4) flat in vec4 particle_texels[DST_VOLUME_TEXELS];
 layout(location = 0) out vec4 dst_particle_colour;
 #ifdef DST_AROUND_GLASS
 layout(location = 1) out vec4 dst_particle_front;
+#endif
+#ifdef DST_EXACT
+layout(location = 1) out float dst_particle_optical_depth;  // where the list is full: the tail targets'
 #endif
 
 // World units over which a particle fades out as it nears the surface behind it (soft particles): without
@@ -69,9 +73,15 @@ void main() {
 #endif
   float soft = (1.0f - r2) * (1.0f - r2) * min(gap / dst_particle_fade, 1.0f);
   float a = clamp(particle_material.w * particle_corner_alpha.z * soft, 0.0f, 1.0f);
+#ifdef DST_EXACT
+  if (!(a > 0.0f)) discard;
+  dst_particle_colour = dst_push_shaded(dst_pixel(), gl_FragCoord.z, vec4(particle_material.xyz * (frame.ambient.xyz + light), a),
+                                        dst_particle_optical_depth);
+  return;
+#endif
   vec4 colour = vec4(particle_material.xyz * (frame.ambient.xyz + light) * a, 1.0f - a);
 #ifdef DST_AROUND_GLASS
-  bool behind = gl_FragCoord.z > glass.x;
+  bool behind = dst_behind_glass(gl_FragCoord.z, glass.x);
   vec4 none = vec4(0.0f, 0.0f, 0.0f, 1.0f);
   dst_particle_colour = behind ? colour : none;
   dst_particle_front = behind ? none : colour;

@@ -12,12 +12,6 @@ layout(location = 1) out vec4 colour_front;
 layout(binding = DST_SLOT_KBUFFER_TAIL) uniform sampler2D dst_tail;
 layout(binding = DST_SLOT_KBUFFER_TAIL + 1) uniform sampler2D dst_tail_optical_depth;
 
-bool dst_nearer(uvec4 a, uvec4 b) {  // depths are positive floats: their bits order as uints
-  if (a.x != b.x) return a.x < b.x;
-  if (a.y != b.y) return a.y < b.y;
-  return a.z < b.z;
-}
-
 vec3 dst_shade_node(ivec2 p, uvec4 node, bool full) {
   return dst_hair_lit(dst_world_position(p, uintBitsToFloat(node.x)), dst_unpack_tangent(node.y), dst_unpack_colour(node.z), full);
 }
@@ -72,7 +66,7 @@ void main() {
   // core's farthest fragment (every list fragment in it lies farther still); elsewhere all lies behind.
   float glass = dst_glass_and_opaque(p).x;
   bool tail_behind = true;
-  for (int i = 0; i < n; ++i) tail_behind = uintBitsToFloat(core[i].x) > glass;
+  if (n > 0) tail_behind = dst_behind_glass(uintBitsToFloat(core[n - 1].x), glass);
   vec4 none = vec4(0.0f, 0.0f, 0.0f, 1.0f), tail_layer = vec4(dst_tail_over(vec3(0.0f), tail, transmittance), transmittance);
   vec4 behind = tail_behind ? tail_layer : none, front = tail_behind ? none : tail_layer;
   for (int i = n - 1; i >= 0; --i) {
@@ -82,7 +76,7 @@ void main() {
 #else
     vec3 shaded = dst_shade_node(p, core[i], true);
 #endif
-    if (uintBitsToFloat(core[i].x) > glass) behind = vec4(dst_over(behind.xyz, vec4(shaded, c.w)), behind.w * (1.0f - c.w));
+    if (dst_behind_glass(uintBitsToFloat(core[i].x), glass)) behind = vec4(dst_over(behind.xyz, vec4(shaded, c.w)), behind.w * (1.0f - c.w));
     else front = vec4(dst_over(front.xyz, vec4(shaded, c.w)), front.w * (1.0f - c.w));
   }
   colour = behind;

@@ -58,23 +58,21 @@ result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const
 
 // The k-buffer (many_layers): hair into per-pixel lists (or the tail targets), then the resolve over the
 // frame with the options' k and variant, or with `around` (frame_plan::around_glass) into the glass layers.
-// `shadows` is the shadow map's kind.
-result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around);
+// `shadows` is the shadow map's kind. In the exact reference (technique::reference) the capture takes every
+// transparent fragment of the surfaces and hair, shaded fully, reading the shadow maps' layers and, where
+// the effects `on` have textures, the materials' textures; its resolve blends every fragment in order.
+result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around, effects on);
 result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around);
-// Its node pool's size and tail targets.
+// Its node pool's size (its tail targets: dstrans::kbuffer_tail_targets).
 std::uint32_t kbuffer_capacity(const options& o);
 // The bytes of a frame's render targets, shadow maps and k-buffer lists, for the resource budget.
 std::size_t frame_bytes(const frame_plan& p, const options& o);
-std::vector<target_desc> kbuffer_tail_targets();
-// The glass layers (frame_plan::around_glass): what lies behind a pixel's glass and what lies in front of
-// it, each premultiplied, with in alpha what it keeps of what lies behind it.
-std::vector<target_desc> glass_layer_targets();
 
 // Light volumes (light_volumes: baked lighting for particles, light_volume.hpp). The bake of options' model: all unshadowed lights
 // (`shadows` off), or one shadowed spot light reading the shadow map of kind `shadows` through the
 // bake's shadow hook. The particle pass: lit from the atlas, or (options::particle_light::forward) by
 // every light, reading the shadow maps' copies in layers; over the frame, or with `around` into the glass
-// layers.
+// layers; in the exact reference, by every light into the per-pixel lists.
 result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o);
 result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around);
 
@@ -210,11 +208,12 @@ inline result<pass_sources> gbuffer_pass(const pass_shaders& shaders, layer whic
   pass_sources p;
   std::vector<std::string> switches = pass_detail::texture_switches(on);
   if (which == layer::second) switches.push_back("DST_PEEL");
+  if (opt.method == technique::reference) switches.push_back("DST_OPAQUE_ONLY");
   glsl::layout_options o;
   o.sides = glsl::side::write;
   add_gbuffer_layout(p.fragment, opt.layout, "gbuffer", o);
   // The first peeled layer keeps every nearest fragment, transparent or not.
-  if (which == layer::interlaced && on.has(effect::transparency)) {
+  if (which == layer::interlaced && on.has(effect::transparency) && opt.method == technique::interlaced) {
     switches.push_back(effect_switch(effect::transparency));
     add_predicate(p.fragment, opt.interlace);
   }
@@ -286,6 +285,8 @@ inline result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode 
 }
 
 inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const options& o) {
+  // The exact reference's G-buffer holds only opaque surfaces: it composes them alone.
+  if (o.method == technique::reference) on = on.without(effect::transparency).without(effect::refraction);
   pass_sources p;
   p.vertex = glsl::fullscreen_vertex_shader();
   glsl::layout_options read;
@@ -309,7 +310,7 @@ inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on
     other = "peeled.glsl";
   }
   // Peeling's second layer, or the previous frame's.
-  if (o.method != technique::interlaced || temporal) {
+  if (o.method == technique::peeling || temporal) {
     read.first_binding = binding(slot::gbuffer2);
     add_gbuffer_layout(p.fragment, o.layout, "gbuffer2", read);
     read.first_binding = binding(slot::light2);
@@ -343,8 +344,8 @@ inline result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shade
       if (auto ok = add(name, light_pass(shaders, k, vol == 1, o)); !ok) return failure{ok.error()};
     }
   if (auto ok = add("compose pass", compose_pass(shaders, plan.on, o)); !ok) return failure{ok.error()};
-  if (plan.on.has(effect::many_layers)) {
-    if (auto ok = add("capture pass", capture_pass(shaders, plan.shadows, o, plan.around_glass)); !ok) return failure{ok.error()};
+  if (plan.lists) {
+    if (auto ok = add("capture pass", capture_pass(shaders, plan.shadows, o, plan.around_glass, plan.on)); !ok) return failure{ok.error()};
     if (auto ok = add("resolve pass", resolve_pass(shaders, plan.shadows, o, plan.around_glass)); !ok) return failure{ok.error()};
   }
   if (plan.on.has(effect::light_volumes))
@@ -365,26 +366,35 @@ inline std::size_t frame_bytes(const frame_plan& p, const options& o) {
   // The plan's bytes a pixel count the previous frame's G-buffer of temporal interlacing, not peeling's second.
   std::size_t bytes = std::size_t(p.pipeline.bytes_per_pixel) * pixels * std::size_t(p.peeling ? 2 : 1);
   if (p.shadows != shadow_mode::off) bytes += std::size_t(o.shadow_size) * std::size_t(o.shadow_size) * 8u;
-  if (p.on.has(effect::many_layers)) bytes += std::size_t(kbuffer_capacity(o)) * 16u + pixels * 4u;
+  if (p.lists) bytes += std::size_t(kbuffer_capacity(o)) * 16u + pixels * 4u;
   return bytes;
 }
 
-inline std::vector<target_desc> kbuffer_tail_targets() {
-  return {{format::rgba16f, {"tail.r", "tail.g", "tail.b", "tail.alpha"}}, {format::r16f, {"optical_depth"}}};
-}
-
-inline std::vector<target_desc> glass_layer_targets() {
-  return {{format::rgba16f, {"behind.r", "behind.g", "behind.b", "behind.kept"}},
-          {format::rgba16f, {"front.r", "front.g", "front.b", "front.kept"}}};
-}
-
-inline result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around) {
+inline result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around, effects on) {
   pass_sources p;
   std::vector<std::string> switches;
+  if (o.method == technique::reference) {
+    if (shadows != shadow_mode::off) {
+      for (const std::string& s : pass_detail::shadow_switches(shadows)) switches.push_back(s);
+      if (auto ok = shaders.add_to(p.fragment, "shadow_layers.glsl", switches); !ok) return failure{ok.error()};
+      pass_detail::add_shadow_lookup(p.fragment, shadows, o);
+      if (shadows == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
+    }
+    glsl::layout_options read;
+    read.sides = glsl::side::read;
+    read.first_binding = binding(slot::gbuffer);
+    add_gbuffer_layout(p.fragment, o.layout, "gbuffer", read);
+    switches.push_back(effect_switch(effect::many_layers));
+    for (const std::string& s : pass_detail::light_switches(o)) switches.push_back(s);
+    for (const std::string& s : pass_detail::texture_switches(on)) switches.push_back(s);
+    const std::vector<std::string> files{"lighting.glsl", "lists.glsl", "kbuffer.glsl", "exact_capture.frag.glsl"};
+    if (auto ok = pass_detail::finish(p.fragment, shaders, files, switches); !ok) return failure{ok.error()};
+    return pass_detail::scene_vertex(shaders, std::move(p), pass_detail::texture_switches(on));
+  }
   pass_detail::add_layers_inputs(p.fragment, shadows, o, switches);
   if (around) pass_detail::add_around_glass(p.fragment, o, switches);
   if (o.kbuffer_variant == options::layers::wboit) switches.push_back("DST_LAYERS_WBOIT");
-  if (auto ok = pass_detail::finish(p.fragment, shaders, {"around_glass.glsl", "kbuffer.glsl", "capture.frag.glsl"}, switches); !ok)
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"around_glass.glsl", "lists.glsl", "kbuffer.glsl", "capture.frag.glsl"}, switches); !ok)
     return failure{ok.error()};
   return pass_detail::scene_vertex(shaders, std::move(p));
 }
@@ -392,6 +402,10 @@ inline result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mod
 inline result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around) {
   pass_sources p;
   p.vertex = glsl::fullscreen_vertex_shader();
+  if (o.method == technique::reference) {
+    if (auto ok = pass_detail::finish(p.fragment, shaders, {"lists.glsl", "exact_resolve.frag.glsl"}); !ok) return failure{ok.error()};
+    return p;
+  }
   std::vector<std::string> switches;
   pass_detail::add_layers_inputs(p.fragment, shadows, o, switches);
   if (around) pass_detail::add_around_glass(p.fragment, o, switches);
@@ -401,7 +415,7 @@ inline result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mod
   if (o.kbuffer_variant == options::layers::tailless) switches.push_back("DST_LAYERS_TAILLESS");
   if (o.kbuffer_variant == options::layers::cheap) switches.push_back("DST_LAYERS_CHEAP");
   if (o.kbuffer_variant == options::layers::forward) switches.push_back("DST_LAYERS_FORWARD");
-  if (auto ok = pass_detail::finish(p.fragment, shaders, {"around_glass.glsl", "kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok)
+  if (auto ok = pass_detail::finish(p.fragment, shaders, {"around_glass.glsl", "lists.glsl", "kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok)
     return failure{ok.error()};
   return p;
 }
@@ -428,7 +442,8 @@ inline result<glsl::source> bake_pass(const pass_shaders& shaders, shadow_mode s
 inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around) {
   pass_sources p;
   std::vector<std::string> switches;
-  if (o.particles == options::particle_light::forward) {
+  const bool exact = o.method == technique::reference;  // lit by the forward reference, into the lists
+  if (o.particles == options::particle_light::forward || exact) {
     switches.push_back("DST_PARTICLES_FORWARD");
     if (shadows != shadow_mode::off) {
       for (const std::string& s : pass_detail::shadow_switches(shadows)) switches.push_back(s);
@@ -448,7 +463,11 @@ inline result<pass_sources> particle_pass(const pass_shaders& shaders, shadow_mo
   std::vector<std::string> fragment_switches = switches;
   if (around) pass_detail::add_around_glass(p.fragment, o, fragment_switches);
   std::vector<std::string> files{"around_glass.glsl", "particle.frag.glsl"};
-  if (o.particles == options::particle_light::forward && shadows != shadow_mode::off) files.insert(files.begin(), "lighting.glsl");
+  if (exact) {
+    fragment_switches.push_back("DST_EXACT");
+    files.insert(files.begin() + 1, "lists.glsl");
+  }
+  if ((o.particles == options::particle_light::forward || exact) && shadows != shadow_mode::off) files.insert(files.begin(), "lighting.glsl");
   if (auto ok = pass_detail::finish(p.fragment, shaders, files, fragment_switches); !ok) return failure{ok.error()};
   return p;
 }

@@ -35,8 +35,10 @@ enum class shadow_mode { off, opaque, transparent };
 
 // interlaced: the thesis's single G-buffer with transparent rows; peeling: deferred depth peeling, two
 // full G-buffers and light buffers (4.1.2); forward, forward_depth: multi-pass forward rendering with
-// the same interlacing, refraction checked by de-interlaced alpha or by depth (4.1.3, 4.1.4).
-enum class technique { interlaced, peeling, forward, forward_depth };
+// the same interlacing, refraction checked by de-interlaced alpha or by depth (4.1.3, 4.1.4); reference:
+// the exact reference, the opaque surfaces deferred and every transparent fragment (glass, hair, particles)
+// shaded fully into per-pixel lists, sorted and blended in order, without refraction.
+enum class technique { interlaced, peeling, forward, forward_depth, reference };
 inline bool is_forward(technique t) { return t == technique::forward || t == technique::forward_depth; }
 
 // The G-buffer's layout: Table 3.1's (16 bytes a pixel), or compact_gbuffer (8 bytes, depth read from the
@@ -114,6 +116,13 @@ struct frame_plan {
   shadow_mode shadows;     // the shadow map: off, opaque (depth), transparent (depth and colour)
   std::vector<shadow_mode> lookups;  // per light: no shadow, the plain lookup, or Eq. 3.1's
   bool forward, forward_depth, peeling;
+  bool exact;              // technique::reference
+  // Per-pixel lists (the k-buffer's nodes, heads and tail targets): for hair, or in the exact reference for
+  // every transparent fragment of a scene that has any.
+  bool lists;
+  // The shadow maps copied into the layers of an array as each is drawn, for the passes that light a
+  // fragment by every light at once: the particles' forward reference, the exact reference.
+  bool shadow_layers;
   bool temporal;           // temporal interlacing: a second G-buffer holds the previous frame's
   // Whether the shadow pass samples the materials' textures (render::textured_shadows, or forced). Where it
   // does not, it reads no texture coordinates: it is built for shadow_effects(), `on` less effect::textures.
@@ -156,6 +165,7 @@ inline const char* technique_name(technique t) {
     case technique::peeling: return "peeling";
     case technique::forward: return "forward";
     case technique::forward_depth: return "forward-depth";
+    case technique::reference: return "reference";
   }
   return "?";
 }
@@ -383,7 +393,7 @@ inline std::vector<particle_region> particle_regions(const scene& s, const parti
 inline particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o) {
   particle_plan out;
   out.on = p.on.has(effect::light_volumes) && !p.forward;
-  out.reference = out.on && o.particles == options::particle_light::forward;
+  out.reference = out.on && (o.particles == options::particle_light::forward || p.exact);
   out.baking = out.on && !out.reference;
   out.atlas = particle_atlas(s, o);
   const std::vector<light_block> blocks = light_blocks(s);
@@ -421,7 +431,7 @@ inline bool rough_refraction(const options& o, effects on) {
 inline frame_plan plan_of(const scene& s, const options& o) {
   frame_plan p{};
   effects e = effects_of(scene_features(s));
-  if (o.refraction <= 0.0f) e = e.without(effect::refraction);
+  if (o.refraction <= 0.0f || o.method == technique::reference) e = e.without(effect::refraction);
   if (o.shadows != shadow_mode::transparent) e = e.without(effect::transparent_shadows);
   if (o.shadows == shadow_mode::off) e = e.without(effect::shadows);
   e.bits |= o.force.bits;  // forced code runs even where the options leave its effect nothing to do
@@ -442,8 +452,14 @@ inline frame_plan plan_of(const scene& s, const options& o) {
   p.forward_depth = o.method == technique::forward_depth;
   p.peeling = o.method == technique::peeling;
   p.temporal = temporal_interlacing(o, p.on);
+  p.exact = o.method == technique::reference;
   p.layers = p.forward ? 0 : p.peeling ? 2 : 1;
-  p.around_glass = !p.forward && dstrans::around_glass(p.on);
+  p.around_glass = !p.forward && !p.exact && dstrans::around_glass(p.on);
+  const bool transparent = p.on.has(effect::transparency) || p.on.has(effect::many_layers) || p.on.has(effect::light_volumes);
+  p.lists = p.exact ? transparent : !p.forward && p.on.has(effect::many_layers);
+  const bool particle_reference = !p.forward && p.on.has(effect::light_volumes) && o.particles == options::particle_light::forward;
+  p.shadow_layers = (p.exact && transparent) || particle_reference;
+  p.shadow_layers = p.shadow_layers && (p.uses(shadow_mode::opaque) || p.uses(shadow_mode::transparent));
   // The previous frame's G-buffer and light buffer, which the compose pass reads.
   if (p.temporal) {
     std::vector<planned_target> history;
@@ -543,6 +559,31 @@ inline void add_layered(frame_schedule& out, const frame_plan& p, const particle
     layered(pass_step::particles, "particles", "particle pass", pass_kind::geometry,
             {smoke.baking ? "volume atlas" : smoke.shadowed_lights.empty() ? "scene" : "shadow layers"});
 }
+
+// The exact reference's passes over the composed frame: every transparent fragment of the surfaces and hair
+// shaded into the lists (the capture empties them first), then the particles', then the resolve.
+inline void add_exact(frame_schedule& out, const frame_plan& p, const particle_plan& smoke) {
+  if (!p.lists) return;
+  std::vector<std::string> reads{"scene", "gbuffer"};
+  if (p.shadow_layers) reads.push_back("shadow layers");
+  scheduled_pass c("capture", "capture pass", pass_kind::geometry, -1, reads, {"kbuffer"});
+  c.step = pass_step::capture;
+  c.state.blend = blending::add;
+  c.draws = geometry_set::everything;
+  c.clears = {glm::vec4(0.0f), glm::vec4(0.0f)};
+  out.passes.push_back(c);
+  if (smoke.on) {
+    reads.push_back("kbuffer");
+    scheduled_pass q("particles", "particle pass", pass_kind::geometry, -1, reads, {"kbuffer"});
+    q.step = pass_step::particles;
+    q.state.blend = blending::add;
+    out.passes.push_back(q);
+  }
+  scheduled_pass r("resolve", "resolve pass", pass_kind::fullscreen, -1, {"kbuffer", "frame"}, {"frame"});
+  r.step = pass_step::resolve;
+  r.state.blend = blending::over;
+  out.passes.push_back(r);
+}
 }  // namespace frame_detail
 
 inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o) {
@@ -606,8 +647,8 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
       }
       if (smoke.baking)
         add(pass_step::bake_light, "bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume atlas"});
-      if (smoke.reference)
-        add(pass_step::shadow_layer, "particles", "shadow map into its layer, light " + n, pass_kind::transfer, l, {"shadow map"},
+      if (p.shadow_layers)
+        add(pass_step::shadow_layer, p.exact ? "shadow layers" : "particles", "shadow map into its layer, light " + n, pass_kind::transfer, l, {"shadow map"},
             {"shadow layers"});
       reads.push_back("shadow map");
     }
@@ -650,7 +691,8 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
     }
     add(pass_step::compose, "compose", "compose pass", pass_kind::fullscreen, -1, reads, {"frame"});
   }
-  if (!p.around_glass) frame_detail::add_layered(out, p, smoke);
+  if (p.exact) frame_detail::add_exact(out, p, smoke);
+  else if (!p.around_glass) frame_detail::add_layered(out, p, smoke);
   for (std::size_t k = 0; k < p.post.passes.size(); ++k) {
     const post_pass& pass = p.post.passes[k];
     std::vector<std::string> reads;
