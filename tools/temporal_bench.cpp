@@ -124,11 +124,19 @@ result<temporal_results> temporal_records(const scene& room, const render::optio
     }
     const std::vector<render::frame>& peeled = drawn[thesis_peeling];
     const double peeling_ms = median_ms(peeled);
+    // The exact reference of each frame (technique reference, which never refracts); not used where its lists
+    // overflowed on some frame.
+    render::options exact_options = base;
+    exact_options.method = render::technique::reference;
+    auto exact = draw(sequence, exact_options);
+    if (!exact) return failure{path + ", exact reference: " + exact.error()};
+    std::uint64_t overflow = 0;
+    for (const render::frame& f : *exact) overflow += f.kbuffer_overflow;
     for (std::size_t k = 0; k < drawn.size(); ++k) {
       const method& m = methods[k];
       const std::vector<render::frame>& reference = drawn[m.layout == render::gbuffer_layout::thesis ? thesis_peeling : compact_peeling];
       std::vector<render::image_error> errors;
-      double worst = 0.0, worst_flip = 0.0, change = 0.0, against_thesis = 0.0;
+      double worst = 0.0, worst_flip = 0.0, change = 0.0, against_thesis = 0.0, flip_exact = 0.0;
       for (std::size_t i = 1; i < drawn[k].size(); ++i) {
         const std::vector<bool> glass = render::glass_pixels(peeled[i]);
         errors.push_back(render::compare(drawn[k][i].final_image, reference[i].final_image, glass));
@@ -136,6 +144,7 @@ result<temporal_results> temporal_records(const scene& room, const render::optio
         worst = std::max(worst, errors.back().masked.rmse);
         worst_flip = std::max(worst_flip, errors.back().masked.flip);
         change += render::compare(drawn[k][i].final_image, drawn[k][i - 1].final_image, glass).masked.rmse / double(drawn[k].size() - 1);
+        flip_exact += render::compare(drawn[k][i].final_image, (*exact)[i].final_image, glass).masked.flip / double(drawn[k].size() - 1);
       }
       render::options o = base;
       o.temporal = m.temporal;
@@ -157,7 +166,9 @@ result<temporal_results> temporal_records(const scene& room, const render::optio
                                                  {"rmse_transparent_against_thesis_peeling", against_thesis},
                                                  {"worst_rmse_transparent", worst},
                                                  {"worst_flip_transparent", worst_flip},
-                                                 {"frame_change_transparent", change}},
+                                                 {"frame_change_transparent", change},
+                                                 {"exact_overflow", overflow},
+                                                 {"flip_transparent_against_exact", overflow ? json(nullptr) : json(flip_exact)}},
                                                 mean_of(errors)));
       if (k >= strip_columns) continue;
       // The last frame's glass, cropped where peeling's glass lies on average.

@@ -38,7 +38,8 @@ struct temporal_results {
 // (edge-aware reconstruction, compact layout), the temporal one (temporal interlacing over the partner fetch,
 // compact layout) and depth peeling (in both layouts); each frame after the first against peeling's of the
 // same frame in the method's layout, on the glass peeling's first layer holds: mean and worst errors, the
-// RMSE against Table 3.1's peeling, the frame-to-frame change (on the still path, the flicker), the median
+// RMSE against Table 3.1's peeling, the frame-to-frame change (on the still path, the flicker), the mean
+// FLIP on glass against the exact reference of each frame (null where its lists overflowed), the median
 // frame time and bytes a pixel, with Table 3.1 peeling's time beside them.
 result<temporal_results> temporal_records(const scene& room, const render::options& base, int frames, const std::string& backend,
                                           const sequence_draw& draw);
