@@ -32,7 +32,7 @@ bool dst_nearer(uvec4 a, uvec4 b) {
 }
 
 // The exact reference's nodes hold fragments already shaded: colour and alpha in half floats (colour
-// clamped to half's range, NaN to 0).
+// clamped to half's finite range, alpha to [0, 1]).
 uvec3 dst_shaded_node(float depth, vec4 shaded) {
   vec4 c = vec4(min(max(shaded.xyz, vec3(0.0f)), vec3(65504.0f)), clamp(shaded.w, 0.0f, 1.0f));
   return uvec3(floatBitsToUint(depth), packHalf2x16(c.xy), packHalf2x16(c.zw));

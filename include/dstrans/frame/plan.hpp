@@ -458,8 +458,8 @@ inline frame_plan plan_of(const scene& s, const options& o) {
   const bool transparent = p.on.has(effect::transparency) || p.on.has(effect::many_layers) || p.on.has(effect::light_volumes);
   p.lists = p.exact ? transparent : !p.forward && p.on.has(effect::many_layers);
   const bool particle_reference = !p.forward && p.on.has(effect::light_volumes) && o.particles == options::particle_light::forward;
-  p.shadow_layers = (p.exact && transparent) || particle_reference;
-  p.shadow_layers = p.shadow_layers && (p.uses(shadow_mode::opaque) || p.uses(shadow_mode::transparent));
+  const bool shadowed = p.uses(shadow_mode::opaque) || p.uses(shadow_mode::transparent);
+  p.shadow_layers = shadowed && ((p.exact && transparent) || particle_reference);
   // The previous frame's G-buffer and light buffer, which the compose pass reads.
   if (p.temporal) {
     std::vector<planned_target> history;
@@ -648,8 +648,8 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
       if (smoke.baking)
         add(pass_step::bake_light, "bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume atlas"});
       if (p.shadow_layers)
-        add(pass_step::shadow_layer, p.exact ? "shadow layers" : "particles", "shadow map into its layer, light " + n, pass_kind::transfer, l, {"shadow map"},
-            {"shadow layers"});
+        add(pass_step::shadow_layer, p.exact ? "shadow layers" : "particles", "shadow map into its layer, light " + n,
+            pass_kind::transfer, l, {"shadow map"}, {"shadow layers"});
       reads.push_back("shadow map");
     }
     if (p.forward) {
