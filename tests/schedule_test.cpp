@@ -363,7 +363,7 @@ TEST_CASE("temporal interlacing alternates every predicate's phase and hands eac
   CHECK(still.interlace == glm::ivec4(0, 1, 1, 1));
   camera moved = room.view;
   moved.position.x += 0.1f;
-  const render::frame_block next = render::sequence_frame(render::camera_frame(moved, room.ambient, o), still, 2, p, o);
+  const render::frame_block next = render::sequence_frame(render::camera_frame(room, moved, o), still, 2, p, o);
   CHECK(next.interlace == glm::ivec4(0, 0, 1, 0));
   CHECK(next.view_proj != still.view_proj);
   // A world point's clip position now, taken to the previous frame, is where that frame's camera saw it;
@@ -383,7 +383,17 @@ TEST_CASE("temporal interlacing alternates every predicate's phase and hands eac
       }
   // Without temporal interlacing a frame is the camera's as it is.
   o.temporal = false;
-  const render::frame_block plain = render::sequence_frame(render::camera_frame(moved, room.ambient, o), still, 2, render::plan_of(room, o), o);
+  const render::frame_block plain = render::sequence_frame(render::camera_frame(room, moved, o), still, 2, render::plan_of(room, o), o);
   CHECK(plain.interlace == glm::ivec4(0));
   CHECK(plain.to_previous == glm::mat4(1.0f));
+}
+
+TEST_CASE("the frame block counts the scene's lights, which a shader loops over, none included", "[schedule]") {
+  scene room = example("glass_room.json");
+  const render::options o;
+  CHECK(std::size_t(render::camera_frame(room, o).counts.x) == room.lights.size());
+  CHECK(std::size_t(render::camera_frame(room, room.view, o).counts.x) == render::light_blocks(room).size());
+  CHECK(render::light_frame(room, render::light_blocks(room).front(), o).counts.x == int(room.lights.size()));
+  room.lights.clear();
+  CHECK(render::camera_frame(room, room.view, o).counts == glm::ivec4(0));
 }

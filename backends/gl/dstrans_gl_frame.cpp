@@ -628,7 +628,7 @@ result<bool> renderer::resize(int width, int height) {
 void renderer::render(const camera& view, const draw_geometry& draw) {
   impl& r = *p_;
   state_guard keep;
-  frame_block camera_block = sequence_frame(camera_frame(view, r.description.ambient, r.o), r.previous, r.sequence, r.plan, r.o);
+  frame_block camera_block = sequence_frame(camera_frame(r.description, view, r.o), r.previous, r.sequence, r.plan, r.o);
   camera_block.params.z = float(hair_shadow_light(r.plan));
   glNamedBufferSubData(r.frame_ubo, 0, sizeof camera_block, &camera_block);
   // Temporal interlacing draws into the other G-buffer and light buffer each frame; the last frame's become

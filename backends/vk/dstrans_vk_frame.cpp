@@ -1065,7 +1065,7 @@ result<bool> renderer::resize(int width, int height) {
 void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geometry& draw) {
   impl& r = *p_;
   const int slot = r.frames_recorded % r.slots;
-  frame_block camera_block = sequence_frame(camera_frame(view, r.description.ambient, r.o), r.previous, r.sequence, r.plan, r.o);
+  frame_block camera_block = sequence_frame(camera_frame(r.description, view, r.o), r.previous, r.sequence, r.plan, r.o);
   camera_block.params.z = float(hair_shadow_light(r.plan));
   std::memcpy(r.camera_blocks[std::size_t(slot)].mapped, &camera_block, sizeof camera_block);
   // Temporal interlacing draws into the other G-buffer and light buffer each frame; the last frame's become

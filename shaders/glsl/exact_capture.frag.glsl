@@ -19,7 +19,7 @@ int dst_layer_of(int i) {
 // Surface s at `world`, lit by every light and the ambient light.
 vec3 dst_lit_surface(dst_surface s, vec3 world) {
   dst_light_sample sum = dst_light_sample_zero();
-  for (int i = 0; i < lights.length(); ++i) {
+  for (int i = 0; i < frame.counts.x; ++i) {
 #ifdef DST_SHADOWS
     dst_shadow_layer = dst_layer_of(i);
 #endif

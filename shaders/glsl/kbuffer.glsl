@@ -34,7 +34,7 @@ float dst_hair_visibility(vec3 world, dst_light_data l, float alpha, int radius)
 vec3 dst_hair_lit(vec3 world, vec3 tangent, vec4 colour_alpha, bool full) {
   vec3 v = normalize(frame.camera_position.xyz - world);
   vec3 sum = frame.ambient.xyz * colour_alpha.xyz;
-  for (int i = 0; i < lights.length(); ++i) {
+  for (int i = 0; i < frame.counts.x; ++i) {
     dst_light_data l = lights[i];
     vec4 reach = dst_light_reach(int(l.direction_kind.w + 0.5f), l.position_range.xyz, l.direction_kind.xyz,
                                  l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, world);

@@ -37,7 +37,7 @@ vec3 dst_behind(vec3 p, float depth) {
 vec3 dst_particle_forward(vec3 p, vec3 n) {
   vec3 sum = vec3(0.0f);
   int layer = 0;
-  for (int i = 0; i < lights.length(); ++i) {
+  for (int i = 0; i < frame.counts.x; ++i) {
     dst_light_data l = lights[i];
     vec4 reach = dst_light_reach(int(l.direction_kind.w + 0.5f), l.position_range.xyz, l.direction_kind.xyz,
                                  l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, p);

@@ -27,6 +27,8 @@ struct dst_frame_data {
   ivec4 interlace;      // xy: added to a pixel before the interlace predicate (this frame's phase), z: 1
                         // when the second G-buffer holds the previous frame's, w: 1 when that frame was
                         // seen with this view_proj
+  ivec4 counts;         // x: the lights in the light buffer (a Vulkan buffer is never empty, so the
+                        // buffer's length() cannot tell no light from one)
 };
 )
 
@@ -51,6 +53,6 @@ struct dst_light_data {
 };
 )
 
-static_assert(sizeof(dstrans::shader::dst_frame_data) == 400 && sizeof(dstrans::shader::dst_material_data) == 48 &&
+static_assert(sizeof(dstrans::shader::dst_frame_data) == 416 && sizeof(dstrans::shader::dst_material_data) == 48 &&
                   sizeof(dstrans::shader::dst_light_data) == 192,
               "dstrans blocks: a block's C++ size differs from its std140/std430 size (GLM with padding?)");

@@ -218,8 +218,8 @@ glm::ivec2 interlace_phase(predicate p, std::uint64_t index);
 // matrices, with which the compose pass finds the second G-buffer's samples; otherwise `f` as it is.
 frame_block sequence_frame(frame_block f, const frame_block& previous, std::uint64_t index, const frame_plan& p,
                            const options& o);
-// The same for camera `c` (a viewer's, moving from frame to frame).
-frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o);
+// The same for scene `s` seen from camera `c` (a viewer's, moving from frame to frame).
+frame_block camera_frame(const scene& s, const camera& c, const options& o);
 // The same, seen from light `l` of light_blocks as its shadow map's view `view` (a point light's cube face
 // 0-5, drawn into its tile; other maps have one view, 0) sees it.
 frame_block light_frame(const scene& s, const light_block& l, const options& o, int view = 0);
@@ -708,19 +708,20 @@ inline int hair_shadow_light(const frame_plan& p) {
   return -1;
 }
 
-inline frame_block camera_frame(const scene& s, const options& o) { return camera_frame(s.view, s.ambient, o); }
+inline frame_block camera_frame(const scene& s, const options& o) { return camera_frame(s, s.view, o); }
 
-inline frame_block camera_frame(const camera& c, glm::vec3 ambient, const options& o) {
+inline frame_block camera_frame(const scene& s, const camera& c, const options& o) {
   frame_block f{};
   f.view = c.view();
   const glm::mat4 projection = c.projection(float(o.width) / float(o.height));
   f.view_proj = projection * f.view;
   f.inv_view_proj = glm::inverse(f.view_proj);
   f.camera_position = glm::vec4(c.position, 0.5f * float(o.height) * projection[1][1]);
-  f.ambient = glm::vec4(ambient, 0.0f);
+  f.ambient = glm::vec4(s.ambient, 0.0f);
   f.size = {o.width, o.height, o.shadow_size, o.shadow_size};
   f.params = {o.refraction, o.shadow_bias, -1.0f, float(o.kbuffer_k)};
   f.to_previous = f.from_previous = glm::mat4(1.0f);
+  f.counts = {int(s.lights.size()), 0, 0, 0};
   return f;
 }
 
