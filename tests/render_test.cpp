@@ -2423,7 +2423,8 @@ TEST_CASE("temporal interlacing: a still camera's second frame is depth peeling'
 // beat the spatial reconstruction, whose samples lie a pixel away, where they are found on either side of
 // an edge and in either phase (found by the partner's depth alone and in the nearest pixel's phase only,
 // the dolly's first frame is worse than the spatial one's and the mean 0.77 of it) and interpolated with
-// their neighbours (taken alone, the mean is 0.71 of it; 0.68 interpolated).
+// their neighbours (taken alone, the mean is 0.71 of it; 0.68 interpolated), and where the previous frame
+// has none, this frame's on the pixel's two sides make up the layer (0.61; the partner alone, 0.68).
 TEST_CASE("temporal interlacing under a moving camera: nearer peeling on glass than the spatial reconstruction",
           "[temporal][render][gl]") {
   auto ctx = gl::headless_context::create();
@@ -2455,7 +2456,49 @@ TEST_CASE("temporal interlacing under a moving camera: nearer peeling on glass t
       spatial_sum += s;
     }
   }
-  CHECK(temporal_sum < 0.7 * spatial_sum);
+  CHECK(temporal_sum < 0.65 * spatial_sum);
+}
+
+// Where the previous frame never saw the glass (the camera has just turned round), a pixel's missing layer
+// comes from this frame's samples on both sides of it along the interlace. A row's partner is the row above
+// it, which at the pane's top row lies outside the pane: in the phase where that row keeps the wall, the
+// partner alone would show the wall untinted there. Lit by the ambient light alone, every glass pixel is
+// then peeling's own.
+TEST_CASE("temporal interlacing without history keeps a pane's edge rows, whose partner lies outside the pane",
+          "[temporal][render][gl]") {
+  auto ctx = gl::headless_context::create();
+  if (!ctx) {
+    WARN("skipped GL: " << ctx.error());
+    return;
+  }
+  scene s;
+  s.view.position = {0.0f, 0.0f, 4.0f};
+  s.view.target = {0.0f, 0.0f, 0.0f};
+  s.ambient = glm::vec3(1.0f);
+  s.materials = {{glm::vec3(0.2f, 0.6f, 0.3f), 1.0f, 0.0f, 16.0f, false}, {glm::vec3(1.0f, 0.1f, 0.1f), 0.5f, 0.0f, 16.0f, false}};
+  s.objects.push_back({shape_box({8.0f, 6.0f, 0.1f}), glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -2.0f}), 0});
+  s.objects.push_back({shape_pane({2.0f, 1.13f}), glm::translate(glm::mat4(1.0f), {0.1f, 0.07f, -1.0f}), 1});
+  scene away = s;
+  away.view.target = {0.0f, 0.0f, 8.0f};
+  options o = small(160, 90);
+  o.method = render::technique::peeling;
+  auto peeled = render::run_gl_sequence({s}, o, pass_shaders());
+  REQUIRE(peeled);
+  const std::vector<bool> glass = render::glass_pixels(peeled->back());
+  REQUIRE(std::count(glass.begin(), glass.end(), true) > 200);
+  o.method = render::technique::interlaced;
+  o.temporal = true;
+  // Either phase: the pane seen first in the second frame, and in the third.
+  for (const std::vector<scene>& frames : {std::vector<scene>{away, s}, std::vector<scene>{away, away, s}}) {
+    auto temporal = render::run_gl_sequence(frames, o, pass_shaders());
+    REQUIRE(temporal);
+    int worst = 0;
+    for (std::size_t i = 0; i < glass.size(); ++i)
+      for (std::size_t c = 0; c < 3 && glass[i]; ++c)
+        worst = std::max(worst, std::abs(int(temporal->back().final_image.rgba[4 * i + c]) - int(peeled->back().final_image.rgba[4 * i + c])));
+    INFO(frames.size() << " frames");
+    CHECK(worst <= 2);
+  }
 }
 
 TEST_CASE("the temporal benchmark's paths move what they say and nothing else", "[temporal][bench]") {

@@ -66,8 +66,9 @@ void dst_spatial_layer(ivec2 pixel, out dst_surface r, out dst_light_sample ligh
 #ifdef DST_TEMPORAL
 // The interlace phase alternates, so where the camera stood still the previous frame stored at this pixel
 // the layer this frame does not. Where the other layer of a pixel `here` comes from: 0, the spatial
-// reconstruction; 1, the previous frame's sample (interpolated with its neighbours: dst_history_between);
-// 2, nowhere: no glass lies in front of this pixel's opaque surface, which is then its own other layer.
+// reconstruction; 1, the previous frame's sample (interpolated with its neighbours: dst_history_between),
+// or where it has none, this frame's samples on either side along the interlace (dst_beside); 2, nowhere:
+// no glass lies in front of this pixel's opaque surface, which is then its own other layer.
 // - A pixel that keeps glass this frame and holds an opaque surface has no glass in front of it, nor has
 //   one whose other layer's samples beside it show no glass.
 // - The previous frame's sample is taken where it lies on this pixel's ray now (within a pixel) and is the
@@ -146,6 +147,26 @@ void dst_history_between(ivec2 pixel, ivec2 at, ivec2 step, vec2 offset, inout d
   }
 }
 
+// Whether `s` can be the layer `here` misses: glass in front of it, or the opaque surface behind its glass.
+bool dst_missing_layer(dst_surface s, dst_surface here, bool glass) {
+  return dst_transparent(s.alpha) == glass && (glass ? s.depth < here.depth : s.depth > here.depth);
+}
+
+// The layer `here` misses from this frame's samples `p` (at the partner) and `q` (at `beyond`, on the
+// pixel's other side along the interlace), where the previous frame has none: their mean where both can be
+// it and show one surface (the linear interpolation at the pixel), else the one that can, the partner
+// first; false where neither can. At the edge of a pane the partner may lie outside it while the pixel's
+// other neighbour shows the glass, so the partner alone (the thesis's pairing) would lose the glass there.
+bool dst_beside(dst_surface here, bool glass, ivec2 partner, ivec2 beyond, dst_surface p, dst_surface q,
+                out dst_surface h, out dst_light_sample light) {
+  bool p_can = dst_missing_layer(p, here, glass), q_can = dst_missing_layer(q, here, glass);
+  float share = p_can ? 0.5f * dst_layer_similarity(p.depth, p.normal, p.alpha, q.depth, q.normal, q.alpha) : 1.0f;
+  if (!q_can) share = 0.0f;
+  h = dst_surface_mix(p, q, share);
+  light = dst_light_mix(dst_light_read(partner), dst_light_read(beyond), share);
+  return p_can || q_can;
+}
+
 // Where the other layer of `pixel` comes from (see above), with the sample `h` and its light.
 int dst_history_at(ivec2 pixel, dst_surface here, out dst_surface h, out dst_light_sample light) {
   h = here;
@@ -182,7 +203,7 @@ int dst_history_at(ivec2 pixel, dst_surface here, out dst_surface h, out dst_lig
     h = h_q;
     offset = offset_q;
   }
-  if (!(off < 1.0f) || !(want_glass ? h.depth < here.depth : h.depth > here.depth)) return 0;
+  if (!(off < 1.0f) || !dst_missing_layer(h, here, want_glass)) return dst_beside(here, want_glass, partner, beyond, p, q, h, light) ? 1 : 0;
   light = dst_light2_read(at);
   dst_history_between(pixel, at, step, offset, h, light);
   return 1;
