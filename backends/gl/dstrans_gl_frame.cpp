@@ -629,7 +629,6 @@ void renderer::render(const camera& view, const draw_geometry& draw) {
   impl& r = *p_;
   state_guard keep;
   frame_block camera_block = sequence_frame(camera_frame(r.description, view, r.o), r.previous, r.sequence, r.plan, r.o);
-  camera_block.params.z = float(hair_shadow_light(r.plan));
   glNamedBufferSubData(r.frame_ubo, 0, sizeof camera_block, &camera_block);
   // Temporal interlacing draws into the other G-buffer and light buffer each frame; the last frame's become
   // the second layer, which the compose pass reads.

@@ -1066,7 +1066,6 @@ void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geomet
   impl& r = *p_;
   const int slot = r.frames_recorded % r.slots;
   frame_block camera_block = sequence_frame(camera_frame(r.description, view, r.o), r.previous, r.sequence, r.plan, r.o);
-  camera_block.params.z = float(hair_shadow_light(r.plan));
   std::memcpy(r.camera_blocks[std::size_t(slot)].mapped, &camera_block, sizeof camera_block);
   // Temporal interlacing draws into the other G-buffer and light buffer each frame; the last frame's become
   // the second layer, which the compose pass reads.

@@ -189,7 +189,7 @@ int dst_history_at(ivec2 pixel, dst_surface here, out dst_surface h, out dst_lig
   if (frame.interlace.w == 1) {
     h = dst_gbuffer2_read(pixel);
     light = dst_light2_read(pixel);
-    if (dst_transparent(h.alpha) == want_glass) return (want_glass ? h.depth < here.depth : h.depth > here.depth) ? 1 : 0;
+    if (dst_transparent(h.alpha) == want_glass) return dst_missing_layer(h, here, want_glass) ? 1 : 0;
     return want_glass && abs(h.depth - here.depth) <= 1e-5f * here.depth ? 2 : 0;
   }
   ivec2 step = abs(pixel - partner), at, at_q;

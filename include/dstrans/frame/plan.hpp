@@ -213,9 +213,10 @@ frame_block camera_frame(const scene& s, const options& o);
 // What temporal interlacing adds to a pixel before the interlace predicate in frame `index`: every other
 // frame the rows (columns, checker squares) that keep glass change places.
 glm::ivec2 interlace_phase(predicate p, std::uint64_t index);
-// The camera block `f` as frame `index` (from 0) of a sequence drawn with the same targets, `previous` being
-// frame index - 1's: with temporal interlacing, that frame's interlace phase, and the previous frame's
-// matrices, with which the compose pass finds the second G-buffer's samples; otherwise `f` as it is.
+// The camera block `f` as frame `index` (from 0) of a sequence drawn by plan `p` with the same targets,
+// `previous` being frame index - 1's: the light whose shadow map hair reads under `p`, and with temporal
+// interlacing that frame's interlace phase and the previous frame's matrices, with which the compose pass
+// finds the second G-buffer's samples.
 frame_block sequence_frame(frame_block f, const frame_block& previous, std::uint64_t index, const frame_plan& p,
                            const options& o);
 // The same for scene `s` seen from camera `c` (a viewer's, moving from frame to frame).
@@ -732,6 +733,7 @@ inline glm::ivec2 interlace_phase(predicate p, std::uint64_t index) {
 
 inline frame_block sequence_frame(frame_block f, const frame_block& previous, std::uint64_t index, const frame_plan& p,
                                   const options& o) {
+  f.params.z = float(hair_shadow_light(p));
   if (!p.temporal) return f;
   f.interlace = glm::ivec4(interlace_phase(o.interlace, index), index > 0 ? 1 : 0, index > 0 && previous.view_proj == f.view_proj ? 1 : 0);
   if (index > 0) {  // composed in double: a still camera's is the identity within float's rounding
