@@ -397,3 +397,53 @@ TEST_CASE("the frame block counts the scene's lights, which a shader loops over,
   room.lights.clear();
   CHECK(render::camera_frame(room, room.view, o).counts == glm::ivec4(0));
 }
+
+TEST_CASE("the frame block names the light whose shadow map hair reads: the last shadowed one, none without", "[schedule]") {
+  scene room = example("glass_room.json");
+  REQUIRE(room.lights.size() >= 2);
+  for (light& l : room.lights) l.shadows = true;
+  room.lights.back().shadows = false;
+  render::options o;
+  for (bool temporal : {false, true}) {
+    o.temporal = temporal;
+    const render::frame_plan p = render::plan_of(room, o);
+    CHECK(render::hair_shadow_light(p) == int(room.lights.size()) - 2);
+    const render::frame_block first = render::sequence_frame(render::camera_frame(room, o), {}, 0, p, o);
+    CHECK(first.params.z == float(room.lights.size() - 2));
+    CHECK(render::sequence_frame(render::camera_frame(room, o), first, 1, p, o).params.z == first.params.z);
+  }
+  o.shadows = render::shadow_mode::off;
+  const render::frame_plan dark = render::plan_of(room, o);
+  CHECK(render::hair_shadow_light(dark) == -1);
+  CHECK(render::sequence_frame(render::camera_frame(room, o), {}, 0, dark, o).params.z == -1.0f);
+}
+
+TEST_CASE("frame_bytes counts the k-buffer's node pool once, at the size the options give it", "[schedule]") {
+  render::options o;
+  o.width = 160;
+  o.height = 90;
+  o.shadow_size = 256;
+  const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
+  const std::size_t pool = std::size_t(dstrans::kbuffer_node_bytes) * std::size_t(render::kbuffer_capacity(o));
+  for (render::technique t : {render::technique::interlaced, render::technique::reference}) {
+    o.method = t;
+    const scene hair = example("hair_panes.json");
+    const render::frame_plan p = render::plan_of(hair, o);
+    REQUIRE(p.lists);
+    render::options tiny = o;
+    tiny.kbuffer_nodes = 1;
+    const std::size_t full = render::frame_bytes(p, o), small = render::frame_bytes(p, tiny);
+    CHECK(full - small == pool - std::size_t(dstrans::kbuffer_node_bytes));
+    // What is left is a few targets a pixel and the shadow map, far less than the default pool.
+    CHECK(small < pool);
+    CHECK(small > pixels * std::size_t(p.pipeline.target("gbuffer.RT0")->bytes_per_pixel));
+  }
+  // Without lists there is no pool.
+  o.method = render::technique::interlaced;
+  const scene room = example("glass_room.json");
+  const render::frame_plan p = render::plan_of(room, o);
+  CHECK(!p.lists);
+  render::options tiny = o;
+  tiny.kbuffer_nodes = 1;
+  CHECK(render::frame_bytes(p, o) == render::frame_bytes(p, tiny));
+}

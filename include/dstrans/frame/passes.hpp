@@ -65,7 +65,8 @@ result<pass_sources> capture_pass(const pass_shaders& shaders, shadow_mode shado
 result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mode shadows, const options& o, bool around);
 // Its node pool's size (its tail targets: dstrans::kbuffer_tail_targets).
 std::uint32_t kbuffer_capacity(const options& o);
-// The bytes of a frame's render targets, shadow maps and k-buffer lists, for the resource budget.
+// The bytes of a frame's render targets, shadow maps (and their layers) and k-buffer lists, for the resource
+// budget (the light volumes' atlas is not among them).
 std::size_t frame_bytes(const frame_plan& p, const options& o);
 
 // Light volumes (light_volumes: baked lighting for particles, light_volume.hpp). The bake of options' model: all unshadowed lights
@@ -362,11 +363,28 @@ inline std::uint32_t kbuffer_capacity(const options& o) {
 }
 
 inline std::size_t frame_bytes(const frame_plan& p, const options& o) {
-  const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
-  // The plan's bytes a pixel count the previous frame's G-buffer of temporal interlacing, not peeling's second.
-  std::size_t bytes = std::size_t(p.pipeline.bytes_per_pixel) * pixels * std::size_t(p.peeling ? 2 : 1);
-  if (p.shadows != shadow_mode::off) bytes += std::size_t(o.shadow_size) * std::size_t(o.shadow_size) * 8u;
-  if (p.lists) bytes += std::size_t(kbuffer_capacity(o)) * 16u + pixels * 4u;
+  const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height), texels = std::size_t(o.shadow_size) * std::size_t(o.shadow_size);
+  std::size_t bytes = 0, shadow_texel = 0;
+  for (const planned_target& t : p.pipeline.targets) {
+    // The lists are counted below at the pool's size, which the options set; the glass layers only where
+    // they are drawn (not in the exact reference).
+    if (t.volume || t.name.rfind("kbuffer.", 0) == 0 || (!p.around_glass && t.name.rfind("glass.", 0) == 0)) continue;
+    if (t.shadow_map) {
+      shadow_texel += std::size_t(t.bytes_per_pixel);
+      continue;
+    }
+    // The plan counts the previous frame's G-buffer of temporal interlacing, not peeling's second.
+    const bool layer = t.name.rfind("gbuffer.", 0) == 0 || t.name.rfind("light.", 0) == 0;
+    bytes += std::size_t(t.bytes_per_pixel) * pixels * (p.peeling && layer ? 2u : 1u);
+  }
+  std::size_t maps = 1;
+  if (p.shadow_layers)
+    for (shadow_mode m : p.lookups) maps += m != shadow_mode::off ? 1u : 0u;
+  bytes += shadow_texel * texels * maps;
+  if (p.lists) {
+    bytes += std::size_t(kbuffer_capacity(o)) * std::size_t(kbuffer_node_bytes) + pixels * 4u;
+    for (const target_desc& t : kbuffer_tail_targets()) bytes += std::size_t(info(t.fmt).bytes_per_pixel) * pixels;
+  }
   return bytes;
 }
 
