@@ -2531,9 +2531,10 @@ TEST_CASE("the temporal benchmark: a record a path and method, peeling its own r
     return;
   }
   options o = small(96, 54);
-  auto t = cli::temporal_records(example("glass_room.json"), o, 2, "gl", [](const std::vector<scene>& f, const options& with) {
-    return render::run_gl_sequence(f, with, pass_shaders());
-  });
+  auto t = cli::temporal_records(
+      example("glass_room.json"), o, 2, "gl",
+      [](const std::vector<scene>& f, const options& with) { return render::run_gl_sequence(f, with, pass_shaders()); },
+      [](const std::vector<scene>& f, const options& with) { return render::gl_clock(f, with, pass_shaders()); }, {3, 3, 1.0});
   INFO((t ? "" : t.error()));
   REQUIRE(t);
   REQUIRE(t->records.size() == 25u);
@@ -2543,6 +2544,14 @@ TEST_CASE("the temporal benchmark: a record a path and method, peeling its own r
     CHECK(r["frame_ms"].get<double>() > 0.0);
     CHECK(r["exact_overflow"] == 0);  // each frame's exact reference is used
     CHECK(r["flip_transparent_against_exact"].is_number());
+    // Only the temporal method is timed frame against frame with peeling.
+    const auto& paired = r["paired_against_peeling"];
+    CHECK(paired.is_null() == (r["settings"]["method"] != "temporal"));
+    if (paired.is_null()) continue;
+    CHECK(paired["frames"] == 3);
+    CHECK(paired["ratio"].get<double>() > 0.0);
+    CHECK(paired["low"].get<double>() <= paired["ratio"].get<double>());
+    CHECK(paired["ratio"].get<double>() <= paired["high"].get<double>());
   }
   // Peeling is two layers, not the truth: glass_room's bottles have back faces it does not see.
   CHECK(still.at("peeling")["flip_transparent_against_exact"].get<double>() > 0.0);
@@ -2964,8 +2973,38 @@ TEST_CASE("a frame clock renders a frame a call and gives its GPU time, on GL an
       }
     }
   };
-  on_each_backend([&] { check_clock(render::gl_clock(s, o, pass_shaders())); },
-                  [&](vk::device& dev) { check_clock(render::vk_clock(dev, s, o, pass_shaders())); });
+  on_each_backend([&] { check_clock(render::gl_clock({s}, o, pass_shaders())); },
+                  [&](vk::device& dev) { check_clock(render::vk_clock(dev, {s}, o, pass_shaders())); });
+}
+
+TEST_CASE("a frame clock over a sequence keeps drawing past its last frame, and needs one frame", "[bench][render]") {
+  // Two cameras under temporal interlacing, five calls: the third starts the sequence again.
+  const scene s = example("pane.json");
+  options o = small(64, 36);
+  o.temporal = true;
+  scene turned = s;
+  turned.view.position.x += 0.5f;
+  auto check_clock = [](const result<cli::frame_clock>& clock) {
+    REQUIRE(clock);
+    for (int i = 0; i < 5; ++i) {
+      const result<frame_times> t = (*clock)();
+      REQUIRE(t);
+      CHECK(t->frame_ms > 0.0);
+    }
+  };
+  on_each_backend([&] { check_clock(render::gl_clock({s, turned}, o, pass_shaders())); },
+                  [&](vk::device& dev) { check_clock(render::vk_clock(dev, {s, turned}, o, pass_shaders())); });
+  on_each_backend(
+      [&] {
+        const auto none = render::gl_clock({}, o, pass_shaders());
+        REQUIRE_FALSE(none);
+        CHECK(none.error() == "a frame clock needs at least one frame");
+      },
+      [&](vk::device& dev) {
+        const auto none = render::vk_clock(dev, {}, o, pass_shaders());
+        REQUIRE_FALSE(none);
+        CHECK(none.error() == "a frame clock needs at least one frame");
+      });
 }
 
 TEST_CASE("a pass's limit: the bytes its resources hold, half read and half written, as a copy's time", "[bench]") {

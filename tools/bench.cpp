@@ -648,6 +648,9 @@ result<json> around_glass_records(const scene& s, const std::string& name, const
   return records;
 }
 
+// How many frames a paired comparison measures (cli::time_paired).
+pair_count pairs_of(bool quick) { return quick ? pair_count{5, 20, 0.03} : pair_count{15, 60, 0.03}; }
+
 // One side of a paired comparison: its options, how its record names it, and the timers compared (the
 // whole frame where none are named).
 struct paired_side {
@@ -677,7 +680,7 @@ result<json> paired_record(const std::string& comparison, const scene& s, const 
   if (!ca) return failure{ca.error()};
   auto cb = clock_of(b.o);
   if (!cb) return failure{cb.error()};
-  auto r = cli::time_paired(*ca, *cb, 2, quick ? pair_count{5, 20, 0.03} : pair_count{15, 60, 0.03}, a.timers, b.timers);
+  auto r = cli::time_paired(*ca, *cb, 2, pairs_of(quick), a.timers, b.timers);
   if (!r) return failure{r.error()};
   auto bytes_of = [&](const render::options& o) {
     auto of = [&](const scene& x) {
@@ -1086,10 +1089,10 @@ int bench(std::vector<std::string> args) {
     if (tty) std::fputc('\n', stderr);
     auto clock = [&](const scene& s, const render::options& o) -> result<frame_clock> {
 #ifdef DSTRANS_HAVE_GL
-      if ((*g)->gl) return render::gl_clock(s, o, pass_shaders());
+      if ((*g)->gl) return render::gl_clock({s}, o, pass_shaders());
 #endif
 #ifdef DSTRANS_HAVE_VK
-      if ((*g)->vk) return render::vk_clock(*(*g)->vk, s, o, pass_shaders());
+      if ((*g)->vk) return render::vk_clock(*(*g)->vk, {s}, o, pass_shaders());
 #endif
       return failure{"no backend"};
     };
@@ -1161,6 +1164,15 @@ int bench(std::vector<std::string> args) {
 #endif
         return failure{"no backend"};
       };
+      auto sequence_clock = [&](const std::vector<scene>& frames, const render::options& o) -> result<frame_clock> {
+#ifdef DSTRANS_HAVE_GL
+        if (on.gl) return render::gl_clock(frames, o, pass_shaders());
+#endif
+#ifdef DSTRANS_HAVE_VK
+        if (on.vk) return render::vk_clock(*on.vk, frames, o, pass_shaders());
+#endif
+        return failure{"no backend"};
+      };
       auto layers = layers_records(*hair, base, quick, b, draw);
       if (!layers) {
         std::fprintf(stderr, "dstrans bench: hair on %s: %s\n", b.c_str(), layers.error().c_str());
@@ -1224,7 +1236,8 @@ int bench(std::vector<std::string> args) {
         return 1;
       }
       for (const json& r : *soft) results.push_back(r);
-      auto temporal = temporal_records(with_lights(scenes.at("glass_room"), fixed), shadowed, quick ? 6 : 24, b, draw_sequence);
+      auto temporal = temporal_records(with_lights(scenes.at("glass_room"), fixed), shadowed, quick ? 6 : 24, b, draw_sequence,
+                                       sequence_clock, pairs_of(quick));
       if (!temporal) {
         std::fprintf(stderr, "dstrans bench: temporal interlacing on %s: %s\n", b.c_str(), temporal.error().c_str());
         return 1;

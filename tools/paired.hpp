@@ -1,7 +1,7 @@
 // Two configurations timed frame against frame. A and B alternate (A B B A, then again), so whatever else
 // the machine does slows both alike, and their ratio comes with a 95% interval from the pairs.
 //
-//   auto a = dstrans::render::gl_clock(room, interlaced, shaders), b = dstrans::render::gl_clock(room, peeling, shaders);
+//   auto a = dstrans::render::gl_clock({room}, interlaced, shaders), b = dstrans::render::gl_clock({room}, peeling, shaders);
 //   auto r = dstrans::cli::time_paired(*a, *b, 2, {15, 60, 0.03});   // 2 warm-up pairs, then 15 to 60 measured
 //   std::printf("peeling takes %.2fx [%.2f, %.2f]\n", r->ratio, r->low, r->high);
 //   auto lit = dstrans::cli::time_paired(*a, *b, 2, {15, 60, 0.03}, {"light"}, {"light"});   // one timer's ratio

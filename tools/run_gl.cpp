@@ -111,18 +111,26 @@ result<std::vector<frame>> run_gl_sequence(const std::vector<scene>& frames, con
   return out;
 }
 
-result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_shaders& shaders) {
-  auto r = gl::renderer::create(s, o, shaders);
+result<cli::frame_clock> gl_clock(const std::vector<scene>& frames, const options& o, const pass_shaders& shaders) {
+  if (frames.empty()) return failure{"a frame clock needs at least one frame"};
+  auto r = gl::renderer::create(frames.front(), o, shaders);
   if (!r) return failure{r.error()};
   struct running {
-    std::unique_ptr<gl::renderer> frames;
-    gl::scene_geometry meshes;
-    camera view;
+    std::unique_ptr<gl::renderer> renderer;
+    std::vector<std::unique_ptr<gl::scene_geometry>> meshes;
+    std::vector<camera> views;
+    std::size_t next = 0;
   };
-  auto on = std::shared_ptr<running>(new running{std::move(*r), gl::scene_geometry(s), s.view});
+  auto on = std::make_shared<running>();
+  on->renderer = std::move(*r);
+  for (const scene& s : frames) {
+    on->meshes.push_back(std::make_unique<gl::scene_geometry>(s));
+    on->views.push_back(s.view);
+  }
   return cli::frame_clock([on]() -> result<frame_times> {
-    on->frames->render(on->view, [&](const scheduled_pass& pass) { on->meshes(pass); });
-    return on->frames->times();
+    const std::size_t i = on->next++ % on->views.size();
+    on->renderer->render(on->views[i], [&](const scheduled_pass& pass) { (*on->meshes[i])(pass); });
+    return on->renderer->times();
   });
 }
 

@@ -18,8 +18,9 @@ result<frame> run_gl(const scene& s, const options& o, const pass_shaders& shade
 // One renderer's frames of `frames` in turn (each its own camera and objects; the first describes the
 // scene to the renderer), each read back with its GPU times.
 result<std::vector<frame>> run_gl_sequence(const std::vector<scene>& frames, const options& o, const pass_shaders& shaders);
-// One frame of `s` a call, each with its GPU times, through a renderer the clock keeps (paired.hpp).
-result<cli::frame_clock> gl_clock(const scene& s, const options& o, const pass_shaders& shaders);
+// One frame a call, each the next of `frames` (after the last, the first again; the first describes the scene
+// to the renderer), each with its GPU times, through a renderer the clock keeps (paired.hpp).
+result<cli::frame_clock> gl_clock(const std::vector<scene>& frames, const options& o, const pass_shaders& shaders);
 // Full-screen copies between two RGBA32F textures in the current context (limit.hpp): a size past their 32 MiB
 // takes as many copies, timed by the host between two glFinish.
 cli::copy_clock gl_copy_clock();

@@ -126,22 +126,30 @@ result<std::vector<frame>> run_vk_sequence(vk::device& dev, const std::vector<sc
   return out;
 }
 
-result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders) {
-  auto meshes = vk::scene_geometry::create(dev, s);
-  if (!meshes) return failure{meshes.error()};
-  auto r = vk::renderer::create(dev, s, o, shaders, (*meshes)->input());
-  if (!r) return failure{r.error()};
+result<cli::frame_clock> vk_clock(vk::device& dev, const std::vector<scene>& frames, const options& o, const pass_shaders& shaders) {
+  if (frames.empty()) return failure{"a frame clock needs at least one frame"};
   struct running {
-    std::unique_ptr<vk::renderer> frames;
-    std::unique_ptr<vk::scene_geometry> meshes;
-    camera view;
+    std::unique_ptr<vk::renderer> renderer;
+    std::vector<std::unique_ptr<vk::scene_geometry>> meshes;
+    std::vector<camera> views;
+    std::size_t next = 0;
   };
-  auto on = std::make_shared<running>(running{std::move(*r), std::move(*meshes), s.view});
+  auto on = std::make_shared<running>();
+  for (const scene& s : frames) {
+    auto meshes = vk::scene_geometry::create(dev, s);
+    if (!meshes) return failure{meshes.error()};
+    on->meshes.push_back(std::move(*meshes));
+    on->views.push_back(s.view);
+  }
+  auto r = vk::renderer::create(dev, frames.front(), o, shaders, on->meshes.front()->input());
+  if (!r) return failure{r.error()};
+  on->renderer = std::move(*r);
   return cli::frame_clock([on, &dev]() -> result<frame_times> {
+    const std::size_t i = on->next++ % on->views.size();
     dev.submit([&](VkCommandBuffer cmd) {
-      on->frames->record(cmd, on->view, [&](VkCommandBuffer c, const scheduled_pass& pass) { (*on->meshes)(c, pass); });
+      on->renderer->record(cmd, on->views[i], [&](VkCommandBuffer c, const scheduled_pass& pass) { (*on->meshes[i])(c, pass); });
     });
-    return on->frames->times();
+    return on->renderer->times();
   });
 }
 

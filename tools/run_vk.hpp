@@ -21,9 +21,10 @@ result<frame> run_vk(vk::device& dev, const scene& s, const options& o, const pa
 // the scene to the renderer), each read back with its GPU times.
 result<std::vector<frame>> run_vk_sequence(vk::device& dev, const std::vector<scene>& frames, const options& o,
                                            const pass_shaders& shaders);
-// One frame of `s` a call on `dev`, each with its GPU times, through a renderer the clock keeps (paired.hpp);
-// `dev` outlives the clock.
-result<cli::frame_clock> vk_clock(vk::device& dev, const scene& s, const options& o, const pass_shaders& shaders);
+// One frame a call on `dev`, each the next of `frames` (after the last, the first again; the first describes
+// the scene to the renderer), each with its GPU times, through a renderer the clock keeps (paired.hpp); `dev`
+// outlives the clock.
+result<cli::frame_clock> vk_clock(vk::device& dev, const std::vector<scene>& frames, const options& o, const pass_shaders& shaders);
 // Full-screen copies between two RGBA32F images on `dev` (limit.hpp), which outlives the clock: a size past
 // their 32 MiB takes as many copies, all in one submission timed by its timestamps.
 cli::copy_clock vk_copy_clock(vk::device& dev);

@@ -33,7 +33,16 @@ const method methods[] = {{"thesis", render::technique::interlaced, false, false
                           {"temporal", render::technique::interlaced, true, false, render::gbuffer_layout::compact},
                           {"peeling", render::technique::peeling, false, false, render::gbuffer_layout::thesis},
                           {"peeling-compact", render::technique::peeling, false, false, render::gbuffer_layout::compact}};
-constexpr std::size_t strip_columns = 4, thesis_peeling = 3, compact_peeling = 4;
+constexpr std::size_t strip_columns = 4, temporal_method = 2, thesis_peeling = 3, compact_peeling = 4;
+
+render::options options_of(const render::options& base, const method& m) {
+  render::options o = base;
+  o.method = m.technique;
+  o.temporal = m.temporal;
+  o.reconstruct = m.reconstruct;
+  o.layout = m.layout;
+  return o;
+}
 
 // A crop of `img`: `size` pixels centred on `centre`, kept inside the image.
 render::image crop(const render::image& img, glm::ivec2 centre, glm::ivec2 size) {
@@ -102,7 +111,7 @@ std::vector<std::pair<std::string, std::vector<scene>>> temporal_paths(const sce
 }
 
 result<temporal_results> temporal_records(const scene& room, const render::options& base, int frames, const std::string& backend,
-                                          const sequence_draw& draw) {
+                                          const sequence_draw& draw, const sequence_clock& clock, const pair_count& count) {
   temporal_results out{json::array(), {}};
   const auto paths = temporal_paths(room, std::max(frames, 2));
   // Tiles of a third of the image, doubled, with white gaps between them (wider between the methods).
@@ -113,17 +122,19 @@ result<temporal_results> temporal_records(const scene& room, const render::optio
     const auto& [path, sequence] = paths[p];
     std::vector<std::vector<render::frame>> drawn;
     for (const method& m : methods) {
-      render::options o = base;
-      o.method = m.technique;
-      o.temporal = m.temporal;
-      o.reconstruct = m.reconstruct;
-      o.layout = m.layout;
-      auto f = draw(sequence, o);
+      auto f = draw(sequence, options_of(base, m));
       if (!f) return failure{path + ", " + m.name + ": " + f.error()};
       drawn.push_back(std::move(*f));
     }
     const std::vector<render::frame>& peeled = drawn[thesis_peeling];
     const double peeling_ms = median_ms(peeled);
+    auto peeling_clock = clock(sequence, options_of(base, methods[thesis_peeling]));
+    if (!peeling_clock) return failure{path + ", peeling's clock: " + peeling_clock.error()};
+    auto temporal_clock = clock(sequence, options_of(base, methods[temporal_method]));
+    if (!temporal_clock) return failure{path + ", temporal's clock: " + temporal_clock.error()};
+    auto paired = time_paired(*peeling_clock, *temporal_clock, 2, count);
+    if (!paired) return failure{path + ", timed in pairs: " + paired.error()};
+    const json against_peeling = {{"ratio", paired->ratio}, {"low", paired->low}, {"high", paired->high}, {"frames", paired->frames}};
     // The exact reference of each frame (technique reference, which never refracts); not used where its lists
     // overflowed on some frame.
     render::options exact_options = base;
@@ -146,11 +157,7 @@ result<temporal_results> temporal_records(const scene& room, const render::optio
         change += render::compare(drawn[k][i].final_image, drawn[k][i - 1].final_image, glass).masked.rmse / double(drawn[k].size() - 1);
         flip_exact += render::compare(drawn[k][i].final_image, (*exact)[i].final_image, glass).masked.flip / double(drawn[k].size() - 1);
       }
-      render::options o = base;
-      o.temporal = m.temporal;
-      o.layout = m.layout;
-      o.method = m.technique;
-      const int bytes = render::plan_of(sequence.front(), o).pipeline.bytes_per_pixel * (m.technique == render::technique::peeling ? 2 : 1);
+      const int bytes = render::plan_of(sequence.front(), options_of(base, m)).pipeline.bytes_per_pixel * (m.technique == render::technique::peeling ? 2 : 1);
       out.records.push_back(render::with_errors({{"technique", std::string("temporal-") + m.name},
                                                  {"scene", "glass_room_path"},
                                                  {"backend", backend},
@@ -161,6 +168,7 @@ result<temporal_results> temporal_records(const scene& room, const render::optio
                                                                {"width", base.width}, {"height", base.height}}},
                                                  {"frame_ms", median_ms(drawn[k])},
                                                  {"peeling_ms", peeling_ms},
+                                                 {"paired_against_peeling", k == temporal_method ? against_peeling : json(nullptr)},
                                                  {"bytes_per_pixel", bytes},
                                                  {"reference", "deferred depth peeling of the same frame, in the same layout"},
                                                  {"rmse_transparent_against_thesis_peeling", against_thesis},
