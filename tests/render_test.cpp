@@ -1370,6 +1370,31 @@ TEST_CASE("the k-buffer's capture is one program for every list variant: only th
   CHECK(program(L::wboit, "capture pass") != program(L::forward, "capture pass"));
 }
 
+TEST_CASE("temporal interlacing compiles a compose pass for still frames besides the one for moving frames, and only then",
+          "[pipeline][temporal]") {
+  const scene room = example("glass_room.json");
+  auto passes = [&](bool temporal) {
+    options o = small(160, 90);
+    o.temporal = temporal;
+    auto p = render::pipeline_passes(pass_shaders(), room, render::plan_of(room, o), o);
+    INFO(p.error());
+    REQUIRE(p);
+    std::map<std::string, render::named_pass> by_name;
+    for (const render::named_pass& np : *p) by_name.emplace(np.name, np);
+    return by_name;
+  };
+  const auto spatial = passes(false), temporal = passes(true);
+  CHECK(spatial.count("compose pass") == 1u);
+  CHECK(spatial.count("compose pass still camera") == 0u);
+  REQUIRE(temporal.count("compose pass still camera") == 1u);
+  const std::string still = temporal.at("compose pass still camera").sources.fragment.str(),
+                    moving = temporal.at("compose pass").sources.fragment.str();
+  CHECK(still.find("DST_STILL_CAMERA") != std::string::npos);
+  CHECK(moving.find("#define DST_STILL_CAMERA") == std::string::npos);
+  // The still variant carries no reprojection.
+  CHECK(spirv_instructions({temporal.at("compose pass still camera")}) < spirv_instructions({temporal.at("compose pass")}));
+}
+
 // A little hair (few enough strands that no pixel holds more than 32 fragments), lit by the sun
 // alone so that every term of the resolve can be recomputed here; a second head of hair on exactly the
 // same strands, coloured differently, makes fragments of equal depth.

@@ -78,7 +78,7 @@ struct renderer::impl {
   std::vector<GLuint> programs, buffers, vertex_arrays, textures;
   std::vector<gl::targets> fixed_targets;
   std::vector<mesh> meshes;  // the point and spot lights' volumes
-  GLuint gbuffer_progs[2] = {}, light_progs[3][2] = {}, forward_light_progs[3] = {}, compose_prog = 0, ambient_prog = 0,
+  GLuint gbuffer_progs[2] = {}, light_progs[3][2] = {}, forward_light_progs[3] = {}, compose_prog = 0, compose_still_prog = 0, ambient_prog = 0,
          shadow_prog = 0, capture_prog = 0, resolve_prog = 0, bake_prog = 0, bake_shadowed_prog = 0, particle_prog = 0;
   std::vector<GLuint> post_progs, post_blocks;
   GLuint fullscreen_vao = 0, frame_ubo = 0, shadow_ubo = 0, materials = 0, lights = 0, material_textures = 0;
@@ -101,7 +101,8 @@ struct renderer::impl {
   timer whole;
   std::vector<std::string> recorded;
   int frames_drawn = 0;
-  // Temporal interlacing: the frames drawn into these targets since they were made, and the last one's block.
+  // Temporal interlacing: the frames drawn into these targets since they were made, and the last one's block
+  // (while a frame's passes are drawn, that frame's).
   std::uint64_t sequence = 0;
   frame_block previous{};
 
@@ -172,6 +173,7 @@ result<bool> renderer::impl::make_programs() {
       made.push_back(keep(gbuffer_progs[k], program(gbuffer_pass(sh, plan.peeling ? (k ? layer::second : layer::first) : layer::interlaced, plan.on, o),
                                                     "gbuffer pass")));
     made.push_back(keep(compose_prog, program(compose_pass(sh, plan.on, o), "compose pass")));
+    if (plan.temporal) made.push_back(keep(compose_still_prog, program(compose_pass(sh, plan.on, o, true), "compose pass still camera")));
     for (shadow_mode k : all_lookups)
       for (int vol = 0; vol < 2 && plan.uses(k); ++vol)
         made.push_back(keep(light_progs[int(k)][vol], program(light_pass(sh, k, vol == 1, o), std::string("light pass") + lookup_label(k) +
@@ -540,7 +542,7 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
         }
         if (plan.around_glass) bind_textures(binding(slot::glass_layers), glass_layers);
       }
-      glUseProgram(compose_prog);
+      glUseProgram(previous.interlace.w == 1 ? compose_still_prog : compose_prog);
       draw_fullscreen(fullscreen_vao);
       break;
     case pass_step::capture: {

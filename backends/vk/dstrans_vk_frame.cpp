@@ -162,7 +162,7 @@ struct renderer::impl {
   vertex_input vertices;
   int slots = 2;
 
-  program gbuffer[2], shadow, light[3][2], ambient, forward_light[3], compose, capture, resolve, particle, bake[2];
+  program gbuffer[2], shadow, light[3][2], ambient, forward_light[3], compose, compose_still, capture, resolve, particle, bake[2];
   std::vector<program> post;
 
   std::vector<buffer> owned;  // every buffer made once
@@ -213,7 +213,7 @@ struct renderer::impl {
   };
   std::vector<frame_clear> clears;
   // Temporal interlacing: the frames recorded into these targets since they were made, the last one's
-  // block, and the sets, uses and clears of the next frame, which draws into the other G-buffer.
+  // block (while a frame is recorded, that frame's), and the sets, uses and clears of the next frame, which draws into the other G-buffer.
   std::uint64_t sequence = 0;
   frame_block previous{};
   std::vector<std::vector<VkDescriptorSet>> swapped_sets;
@@ -263,7 +263,7 @@ renderer::impl::~impl() {
   dev.destroy(out.volume_atlas);
   for (image& i : shadow_layers) dev.destroy(i);
   for (buffer& b : owned) dev.destroy(b);
-  for (program* p : {&gbuffer[0], &gbuffer[1], &shadow, &ambient, &compose, &capture, &resolve, &particle, &bake[0], &bake[1]}) dev.destroy(p->pipe);
+  for (program* p : {&gbuffer[0], &gbuffer[1], &shadow, &ambient, &compose, &compose_still, &capture, &resolve, &particle, &bake[0], &bake[1]}) dev.destroy(p->pipe);
   for (auto& row : light) for (program& p : row) dev.destroy(p.pipe);
   for (program& p : forward_light) dev.destroy(p.pipe);
   for (program& p : post) dev.destroy(p.pipe);
@@ -346,6 +346,7 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
   made.push_back(graphics(compose, plan.forward ? forward_pass(sh, forward_stage::blend, plan.forward_depth, shadow_mode::off, plan.on)
                                                 : compose_pass(sh, plan.on, o),
                           final_formats, plan.forward ? "forward blend pass" : "compose pass"));
+  if (plan.temporal) made.push_back(graphics(compose_still, compose_pass(sh, plan.on, o, true), final_formats, "compose pass still camera"));
   if (plan.lists) {
     // Hair takes its factors alone; the exact reference's glass samples its textures.
     pipeline_state st = plan.exact ? scene_state : without_texture_coordinates(scene_state);
@@ -929,7 +930,8 @@ void renderer::impl::copy_shadow_picture(VkCommandBuffer cmd) {
 // One pass of the schedule into `cmd`: its targets and clears, its pipeline and sets, its draws.
 void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, VkDescriptorSet set, int slot,
                          const draw_geometry& draw) {
-  const program& p = program_of(pass);
+  // The still-camera variant binds what the compose pass binds: the pass's sets serve both.
+  const program& p = pass.step == pass_step::compose && previous.interlace.w == 1 ? compose_still : program_of(pass);
   const VkDeviceSize zero = 0;
   const std::uint32_t i = std::uint32_t(std::max(pass.light, 0));
   if (pass.step == pass_step::capture) {

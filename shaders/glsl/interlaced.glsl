@@ -81,8 +81,18 @@ void dst_spatial_layer(ivec2 pixel, out dst_surface r, out dst_light_sample ligh
 //   opaque surface had none in front of it (glass that moved in shows from the next frame); and glass it
 //   kept with none two pixels either side along the interlace is a sliver one pixel thin, which this frame
 //   cannot see beside the pixel (a sliver that moved away shows for one frame more).
+//
+// Whether the camera stood still (frame.interlace.w) is known before the frame is recorded, so the renderer
+// draws a variant of the compose pass for each case, DST_STILL_CAMERA on still frames: a rasteriser that runs
+// both sides of a branch under a mask (llvmpipe, lavapipe) then pays for neither side's samples on the other.
+
+// Whether `s` can be the layer `here` misses: glass in front of it, or the opaque surface behind its glass.
+bool dst_missing_layer(dst_surface s, dst_surface here, bool glass) {
+  return dst_transparent(s.alpha) == glass && (glass ? s.depth < here.depth : s.depth > here.depth);
+}
+
+#ifdef DST_STILL_CAMERA
 bool dst_lone_glass(ivec2 pixel, ivec2 step, dst_surface here) {
-  if (frame.interlace.w == 0) return false;
   ivec2 size = frame.size.xy;
   dst_surface h = dst_gbuffer2_read(pixel);
   ivec2 a = clamp(pixel + 2 * step, ivec2(0), size - 1), b = clamp(pixel - 2 * step, ivec2(0), size - 1);
@@ -90,6 +100,7 @@ bool dst_lone_glass(ivec2 pixel, ivec2 step, dst_surface here) {
          !dst_transparent(dst_gbuffer2_read(b).alpha);
 }
 
+#else
 // The previous frame's sample at `at`, its depth turned into this frame's, and where it lies now (window
 // coordinates); false where it lies behind the camera now.
 bool dst_history_read(ivec2 at, out dst_surface h, out vec2 now) {
@@ -147,11 +158,6 @@ void dst_history_between(ivec2 pixel, ivec2 at, ivec2 step, vec2 offset, inout d
   }
 }
 
-// Whether `s` can be the layer `here` misses: glass in front of it, or the opaque surface behind its glass.
-bool dst_missing_layer(dst_surface s, dst_surface here, bool glass) {
-  return dst_transparent(s.alpha) == glass && (glass ? s.depth < here.depth : s.depth > here.depth);
-}
-
 // The layer `here` misses from this frame's samples `p` (at the partner) and `q` (at `beyond`, on the
 // pixel's other side along the interlace), where the previous frame has none: their mean where both can be
 // it and show one surface (the linear interpolation at the pixel), else the one that can, the partner
@@ -167,6 +173,8 @@ bool dst_beside(dst_surface here, bool glass, ivec2 partner, ivec2 beyond, dst_s
   return p_can || q_can;
 }
 
+#endif
+
 // Where the other layer of `pixel` comes from (see above), with the sample `h` and its light.
 int dst_history_at(ivec2 pixel, dst_surface here, out dst_surface h, out dst_light_sample light) {
   h = here;
@@ -180,18 +188,14 @@ int dst_history_at(ivec2 pixel, dst_surface here, out dst_surface h, out dst_lig
   dst_surface p = dst_gbuffer_read(partner), q = dst_gbuffer_read(beyond);
   // No glass beside this opaque surface: nothing in front of it (whatever the other layer, the compose
   // shades the surface alone), unless the previous frame kept a sliver of glass here.
-  if (want_glass && !dst_transparent(p.alpha) && !dst_transparent(q.alpha)) {
-    if (!dst_lone_glass(pixel, pixel - partner, here)) return 2;
-    h = dst_gbuffer2_read(pixel);
-    light = dst_light2_read(pixel);
-    return 1;
-  }
-  if (frame.interlace.w == 1) {
-    h = dst_gbuffer2_read(pixel);
-    light = dst_light2_read(pixel);
-    if (dst_transparent(h.alpha) == want_glass) return dst_missing_layer(h, here, want_glass) ? 1 : 0;
-    return want_glass && abs(h.depth - here.depth) <= 1e-5f * here.depth ? 2 : 0;
-  }
+#ifdef DST_STILL_CAMERA
+  if (want_glass && !dst_transparent(p.alpha) && !dst_transparent(q.alpha) && !dst_lone_glass(pixel, pixel - partner, here)) return 2;
+  h = dst_gbuffer2_read(pixel);
+  light = dst_light2_read(pixel);
+  if (dst_transparent(h.alpha) == want_glass) return dst_missing_layer(h, here, want_glass) ? 1 : 0;
+  return want_glass && abs(h.depth - here.depth) <= 1e-5f * here.depth ? 2 : 0;
+#else
+  if (want_glass && !dst_transparent(p.alpha) && !dst_transparent(q.alpha)) return 2;
   ivec2 step = abs(pixel - partner), at, at_q;
   dst_surface h_q;
   vec2 offset, offset_q;
@@ -207,6 +211,7 @@ int dst_history_at(ivec2 pixel, dst_surface here, out dst_surface h, out dst_lig
   light = dst_light2_read(at);
   dst_history_between(pixel, at, step, offset, h, light);
   return 1;
+#endif
 }
 
 void dst_other_layer(ivec2 pixel, dst_surface here, out dst_surface s, out dst_light_sample light) {

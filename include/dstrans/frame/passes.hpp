@@ -54,7 +54,9 @@ constexpr int gbuffer_depth_slot = 3;  // the depth attachment's binding after a
 result<pass_sources> gbuffer_pass(const pass_shaders& shaders, layer which, effects on, const options& o);
 result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode mode, effects on);
 result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode mode, bool volume, const options& o);
-result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const options& o);
+// With temporal interlacing, the compose pass has a variant for frames whose camera stood still since the
+// previous one (frame_block::interlace.w): `still_camera` (DST_STILL_CAMERA).
+result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const options& o, bool still_camera = false);
 
 // The k-buffer (many_layers): hair into per-pixel lists (or the tail targets), then the resolve over the
 // frame with the options' k and variant, or with `around` (frame_plan::around_glass) into the glass layers.
@@ -285,7 +287,7 @@ inline result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode 
   return p;
 }
 
-inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const options& o) {
+inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on, const options& o, bool still_camera) {
   // The exact reference's G-buffer holds only opaque surfaces: it composes them alone.
   if (o.method == technique::reference) on = on.without(effect::transparency).without(effect::refraction);
   pass_sources p;
@@ -307,6 +309,7 @@ inline result<pass_sources> compose_pass(const pass_shaders& shaders, effects on
     if (on.has(effect::transparency)) add_predicate(p.fragment, o.interlace);
     if (on.has(effect::transparency) && o.reconstruct) switches.push_back("DST_RECONSTRUCT");
     if (temporal) switches.push_back("DST_TEMPORAL");
+    if (temporal && still_camera) switches.push_back("DST_STILL_CAMERA");
   } else {
     other = "peeled.glsl";
   }
@@ -345,6 +348,8 @@ inline result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shade
       if (auto ok = add(name, light_pass(shaders, k, vol == 1, o)); !ok) return failure{ok.error()};
     }
   if (auto ok = add("compose pass", compose_pass(shaders, plan.on, o)); !ok) return failure{ok.error()};
+  if (plan.temporal)
+    if (auto ok = add("compose pass still camera", compose_pass(shaders, plan.on, o, true)); !ok) return failure{ok.error()};
   if (plan.lists) {
     if (auto ok = add("capture pass", capture_pass(shaders, plan.shadows, o, plan.around_glass, plan.on)); !ok) return failure{ok.error()};
     if (auto ok = add("resolve pass", resolve_pass(shaders, plan.shadows, o, plan.around_glass)); !ok) return failure{ok.error()};
