@@ -213,7 +213,8 @@ struct renderer::impl {
   };
   std::vector<frame_clear> clears;
   // Temporal interlacing: the frames recorded into these targets since they were made, the last one's
-  // block (while a frame is recorded, that frame's), and the sets, uses and clears of the next frame, which draws into the other G-buffer.
+  // block (while a frame is recorded, that frame's), and the sets, uses and clears of the next frame, which
+  // draws into the other G-buffer.
   std::uint64_t sequence = 0;
   frame_block previous{};
   std::vector<std::vector<VkDescriptorSet>> swapped_sets;
