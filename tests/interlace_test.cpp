@@ -128,3 +128,22 @@ TEST_CASE("a history sample takes in its neighbours linearly, by distance and on
   CHECK(lm.light == glm::vec3(0.5f));
   CHECK(lm.specular == glm::vec3(0.25f));
 }
+
+TEST_CASE("a history colour is held near this frame's samples on either side: a gradient passes, a sliver does not", "[interlace][temporal]") {
+  using shader::dst_history_box;
+  const glm::vec3 a(0.2f, 0.5f, 0.0f), b(0.4f, 0.5f, 1.0f);
+  // Within the samples' range, and within that range again beyond it: unchanged.
+  CHECK(dst_history_box(glm::vec3(0.3f, 0.5f, 0.5f), a, b) == glm::vec3(0.3f, 0.5f, 0.5f));
+  CHECK(dst_history_box(glm::vec3(0.6f, 0.52f, 0.0f), a, b) == glm::vec3(0.6f, 0.52f, 0.0f));
+  // A colour neither sample shows is held to the range widened by itself and 0.05.
+  const glm::vec3 held = dst_history_box(glm::vec3(1.0f, 0.0f, 3.0f), a, b);
+  CHECK(held.x == Approx(0.65f));
+  CHECK(held.y == Approx(0.45f));
+  CHECK(held.z == Approx(2.05f));
+  // A NaN bound holds nothing; a NaN colour comes back as the bounds' midpoint.
+  const float nan = std::nanf("");
+  CHECK(dst_history_box(glm::vec3(0.9f), glm::vec3(nan, 0.0f, 0.0f), glm::vec3(0.1f)).x == 0.9f);
+  const glm::vec3 mid = dst_history_box(glm::vec3(nan), a, b);
+  CHECK(mid.x == Approx(0.3f));
+  CHECK(mid.z == Approx(0.5f));
+}

@@ -448,6 +448,7 @@ inline const std::vector<formula>& formulas() {
           .yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_history_blend, dst_history_shares).within("offset", {-2.0f, 2.0f}).within("similarity", {0.0f, 1.0f})
           .yields(0.0f, 1.0f),
+      DSTRANS_FORMULA(dst_history_blend, dst_history_box).within({"v", "a", "b"}, {0.0f, 1.0f}).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_history_blend, dst_surface_mix).within({"a", "b", "t"}, {0.0f, 1.0f}).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_history_blend, dst_light_mix).within({"a", "b", "t"}, {0.0f, 1.0f}).yields(0.0f, 1.0f),
       DSTRANS_FORMULA(dst_post, dst_gaussian).within("x", {-16.0f, 16.0f}).within("sigma", {0.1f, 8.0f}).yields(0.0f, 1.0f),

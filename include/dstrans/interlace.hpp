@@ -104,6 +104,11 @@ DST_FN vec4 dst_reconstruct(vec4 partner, vec4 a, vec4 b, vec4 c, vec3 weights) 
 //   pixel: offset.y is the history sample's distance from the pixel now, and the share a / (1 + a)
 //   weighs two samples a and 1 away (none at 0; half at 1).
 // Offsets beyond a pixel count as one; a NaN offset or similarity shares nothing.
+// Under a moving camera the history also holds what this frame cannot see at all: a sliver one pixel thin
+// that the new sample grid steps over. dst_history_box keeps each component of the history's colour `v`
+// within the range of this frame's samples `a` and `b` of the same layer on either side of the pixel,
+// widened on each side by that range and 0.05, so a gradient survives and a sliver does not; a NaN bound
+// holds nothing, and a NaN component comes back as the bounds' midpoint.
 DSTRANS_SHARED(dst_history_blend,
 DST_FN vec2 dst_history_shares(vec2 offset, vec2 similarity) {
   vec2 a = abs(offset);
@@ -115,6 +120,15 @@ DST_FN vec2 dst_history_shares(vec2 offset, vec2 similarity) {
   a = min(a, vec2(1.0f));
   s = clamp(s, vec2(0.0f), vec2(1.0f));
   return vec2(a.x, a.y / (1.0f + a.y)) * s;
+}
+DST_FN vec3 dst_history_box(vec3 v, vec3 a, vec3 b) {
+  vec3 r = v;
+  for (int i = 0; i < 3; ++i) {
+    if (isnan(a[i]) || isnan(b[i])) continue;
+    float lo = min(a[i], b[i]), hi = max(a[i], b[i]), margin = hi - lo + 0.05f;
+    r[i] = isnan(v[i]) ? 0.5f * (lo + hi) : clamp(v[i], lo - margin, hi + margin);
+  }
+  return r;
 }
 DST_FN dst_surface dst_surface_mix(dst_surface a, dst_surface b, float t) {
   dst_surface r = a;

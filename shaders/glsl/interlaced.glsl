@@ -76,7 +76,9 @@ void dst_spatial_layer(ivec2 pixel, out dst_surface r, out dst_light_sample ligh
 //   beside the pixel show glass (so glass that moved away leaves nothing), or the opaque surface behind
 //   this pixel's glass. The previous frame's pixel is found by reprojecting the depth of the other layer's
 //   samples on either side along the interlace (at an edge, one of them shows the pixel's surface), and the
-//   sample nearer the ray is taken.
+//   sample nearer the ray is taken. Where both of those samples can be the missing layer, its colour is
+//   held near theirs (dst_history_box): a sliver one pixel thin that a moving camera's new sample grid
+//   steps over is not carried on.
 // - Where the camera has not moved, a pixel that kept glass in the previous frame and held this same
 //   opaque surface had none in front of it (glass that moved in shows from the next frame); and glass it
 //   kept with none two pixels either side along the interlace is a sliver one pixel thin, which this frame
@@ -173,6 +175,17 @@ bool dst_beside(dst_surface here, bool glass, ivec2 partner, ivec2 beyond, dst_s
   return p_can || q_can;
 }
 
+// The history sample `h` (with its light) held near this frame's samples `p` and `q` of the same layer at
+// `partner` and `beyond`, where both can be the layer `here` misses.
+void dst_history_hold(dst_surface here, bool glass, ivec2 partner, ivec2 beyond, dst_surface p, dst_surface q,
+                      inout dst_surface h, inout dst_light_sample light) {
+  if (!dst_missing_layer(p, here, glass) || !dst_missing_layer(q, here, glass)) return;
+  dst_light_sample lp = dst_light_read(partner), lq = dst_light_read(beyond);
+  h.diffuse = dst_history_box(h.diffuse, p.diffuse, q.diffuse);
+  light.light = dst_history_box(light.light, lp.light, lq.light);
+  light.specular = dst_history_box(light.specular, lp.specular, lq.specular);
+}
+
 #endif
 
 // Where the other layer of `pixel` comes from (see above), with the sample `h` and its light.
@@ -210,6 +223,7 @@ int dst_history_at(ivec2 pixel, dst_surface here, out dst_surface h, out dst_lig
   if (!(off < 1.0f) || !dst_missing_layer(h, here, want_glass)) return dst_beside(here, want_glass, partner, beyond, p, q, h, light) ? 1 : 0;
   light = dst_light2_read(at);
   dst_history_between(pixel, at, step, offset, h, light);
+  dst_history_hold(here, want_glass, partner, beyond, p, q, h, light);
   return 1;
 #endif
 }
