@@ -83,6 +83,36 @@ TEST_CASE("flatten puts every object in world space with its material", "[scene]
   CHECK(m.indices.size() == 6 + 36);
   CHECK(m.indices[6] == 4);  // the box's indices follow the pane's vertices
   CHECK(m.normals[4].x == Approx(1.0f));  // the box's +Z face turned to +X
+  // Each object is a part: its indices, in order, and a sphere that holds its vertices.
+  REQUIRE(m.parts.size() == 2);
+  CHECK(m.parts[0].first == 0);
+  CHECK(m.parts[0].count == 6);
+  CHECK(m.parts[1].first == 6);
+  CHECK(m.parts[1].count == 36);
+  CHECK(m.parts[0].centre == glm::vec3(5, 0, 0));
+  CHECK(m.parts[0].radius == Approx(std::sqrt(2.0f)));
+  CHECK(m.parts[1].radius == Approx(std::sqrt(0.75f)));
+}
+
+TEST_CASE("flatten's parts tile the indices, hair last, each sphere holding its object's vertices", "[scene]") {
+  scene s;
+  s.materials = {material{}, material{}};
+  s.materials[1].hair = true;
+  s.objects.push_back({shape_hair(0.5f, 20, 1.0f, 0.01f, 4, 7), glm::mat4(1.0f), 1});
+  s.objects.push_back({shape_sphere(1.0f, 12), glm::translate(glm::mat4(1.0f), glm::vec3(0, 3, -2)), 0});
+  s.objects.push_back({shape_box({0, 0, 0}), glm::mat4(1.0f), 0});  // one point: radius 0
+  const scene_mesh m = flatten(s);
+  REQUIRE(m.parts.size() == 3);
+  std::size_t next = 0;
+  for (const mesh_part& part : m.parts) {
+    CHECK(part.first == next);
+    next += part.count;
+    for (std::size_t i = part.first; i < part.first + part.count; ++i)
+      CHECK(glm::length(m.positions[m.indices[i]] - part.centre) <= part.radius * 1.0001f + 1e-6f);
+  }
+  CHECK(next == m.indices.size());
+  CHECK(m.parts[2].first == m.hair_first);  // the hair, listed first, is drawn last
+  CHECK(m.parts[1].radius == 0.0f);
 }
 
 TEST_CASE("a good scene file loads", "[scene]") {

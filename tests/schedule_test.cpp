@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <random>
 
+#include <dstrans/frame/culling.hpp>
 #include <dstrans/frame/passes.hpp>
 #include <dstrans/frame/plan.hpp>
 #include <scene_json.hpp>
@@ -296,6 +298,83 @@ TEST_CASE("drawn_indices picks a pass's run of a flattened scene, and times_of s
   CHECK(t.pass_ms.at("shadow") == 5.0);
   CHECK(t.pass_ms.at("light") == 2.0);
   CHECK(t.frame_ms == 9.0);
+}
+
+TEST_CASE("outside_clip culls a sphere wholly beyond a plane of the clip volume, and nothing it cannot place", "[schedule][culling]") {
+  // A camera at the origin looking down -Z, 90 degrees, depth from 1 to 10: at z = -5 the sides are at +-5.
+  const glm::mat4 m = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 1.0f, 10.0f);
+  CHECK_FALSE(outside_clip(m, {0, 0, -5}, 0.5f, false));
+  CHECK_FALSE(outside_clip(m, {5.5f, 0, -5}, 1.0f, false));  // across the right plane
+  CHECK(outside_clip(m, {20, 0, -5}, 1.0f, false));
+  CHECK(outside_clip(m, {0, -7, -5}, 1.0f, false));
+  CHECK(outside_clip(m, {0, 0, 5}, 1.0f, false));   // behind the camera
+  CHECK(outside_clip(m, {0, 0, -20}, 1.0f, false));  // beyond the far plane...
+  CHECK_FALSE(outside_clip(m, {0, 0, -20}, 1.0f, true));  // ...which depth clamping draws
+  CHECK_FALSE(outside_clip(m, {0, 0, -10.5f}, 1.0f, false));  // across it
+  CHECK(outside_clip(m, {0, 0, -0.2f}, 0.1f, false));  // before OpenGL's near plane, so before Vulkan's
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  CHECK_FALSE(outside_clip(glm::mat4(0.0f), {20, 0, -5}, 1.0f, false));  // unknown: drawn
+  CHECK_FALSE(outside_clip(m, {nan, 0, -5}, 1.0f, false));
+  CHECK_FALSE(outside_clip(m, {20, 0, -5}, nan, false));
+}
+
+TEST_CASE("visible_runs draws a pass's run less the parts outside its clip volume, neighbours as one run", "[schedule][culling]") {
+  const glm::mat4 m = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 1.0f, 10.0f);
+  const glm::vec3 in(0, 0, -5), out(20, 0, -5);
+  std::vector<mesh_part> parts = {{0, 6, in, 1.0f}, {6, 6, in, 1.0f}, {12, 6, out, 1.0f}, {18, 6, in, 1.0f}, {24, 6, in, 1.0f}};
+  scheduled_pass pass;
+  pass.draws = geometry_set::everything;
+  pass.view_proj = m;
+  auto runs = visible_runs(parts, 24, 30, pass);
+  REQUIRE(runs.size() == 2);
+  CHECK((runs[0].first == 0 && runs[0].count == 12));
+  CHECK((runs[1].first == 18 && runs[1].count == 12));
+  pass.draws = geometry_set::surfaces;  // the hair, from 24, is not the pass's
+  runs = visible_runs(parts, 24, 30, pass);
+  REQUIRE(runs.size() == 2);
+  CHECK((runs[1].first == 18 && runs[1].count == 6));
+  pass.draws = geometry_set::hair;
+  runs = visible_runs(parts, 24, 30, pass);
+  REQUIRE(runs.size() == 1);
+  CHECK((runs[0].first == 24 && runs[0].count == 6));
+  parts[4].centre = out;
+  CHECK(visible_runs(parts, 24, 30, pass).empty());
+  pass.view_proj = glm::mat4(0.0f);  // unknown: all of it
+  runs = visible_runs(parts, 24, 30, pass);
+  REQUIRE(runs.size() == 1);
+  CHECK(runs[0].count == 6);
+  pass.draws = geometry_set::everything;
+  runs = visible_runs({}, 24, 30, pass);  // no parts: drawn_indices' run
+  REQUIRE(runs.size() == 1);
+  CHECK(runs[0].count == 30);
+  pass.draws = geometry_set::none;
+  CHECK(visible_runs(parts, 24, 30, pass).empty());
+}
+
+TEST_CASE("a pass draws with its light view's matrix or the camera's, against which a point light's faces cull the scene",
+          "[schedule][culling]") {
+  const scene lamp = example("glass_room_lamp.json");
+  render::options o;
+  frame_schedule s = render::schedule_of(lamp, render::plan_of(lamp, o), o);
+  const auto lights = render::light_blocks(lamp);
+  const glm::mat4 camera = render::camera_frame(lamp, lamp.view, o).view_proj;
+  set_camera_view(s, camera);
+  const scene_mesh m = flatten(lamp);
+  int faces = 0;
+  for (const scheduled_pass& pass : s.passes) {
+    if (pass.step != pass_step::shadow) {
+      CHECK(pass.view_proj == camera);
+      continue;
+    }
+    ++faces;
+    CHECK(pass.view_proj == render::light_frame(lamp, lights[std::size_t(pass.light)], o, pass.index).view_proj);
+    std::size_t drawn = 0;
+    for (const index_run& run : visible_runs(m.parts, m.hair_first, m.indices.size(), pass)) drawn += run.count;
+    INFO(pass.label);
+    CHECK(drawn > 0);
+    CHECK(drawn < m.indices.size());  // each face sees a part of the room
+  }
+  CHECK(faces == 6);
 }
 
 TEST_CASE("temporal interlacing: planned for glass on the interlaced technique, the previous frame kept and counted",

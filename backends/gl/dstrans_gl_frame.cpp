@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstddef>
 
+#include <dstrans/frame/culling.hpp>
 #include <dstrans/frame/passes.hpp>
 #include <dstrans/particles.hpp>
 
@@ -632,6 +633,7 @@ void renderer::render(const camera& view, const draw_geometry& draw) {
   state_guard keep;
   frame_block camera_block = sequence_frame(camera_frame(r.description, view, r.o), r.previous, r.sequence, r.plan, r.o);
   glNamedBufferSubData(r.frame_ubo, 0, sizeof camera_block, &camera_block);
+  set_camera_view(r.schedule, camera_block.view_proj);
   // Temporal interlacing draws into the other G-buffer and light buffer each frame; the last frame's become
   // the second layer, which the compose pass reads.
   if (r.plan.temporal && r.sequence > 0) {
@@ -687,6 +689,7 @@ scene_geometry::scene_geometry(const scene& s) {
   const scene_mesh m = flatten(s);
   hair_first_ = m.hair_first;
   index_count_ = m.indices.size();
+  parts_ = m.parts;
   buffers_[0] = make_buffer(m.positions, "scene positions");
   buffers_[1] = make_buffer(m.normals, "scene normals");
   buffers_[2] = make_buffer(m.materials, "scene materials");
@@ -719,10 +722,16 @@ scene_geometry::~scene_geometry() {
 }
 
 void scene_geometry::operator()(const scheduled_pass& pass) const {
-  const index_run run = drawn_indices(pass.draws, hair_first_, index_count_);
-  if (run.count == 0) return;
+  const std::vector<index_run> runs = visible_runs(parts_, hair_first_, index_count_, pass);
+  if (runs.empty()) return;
+  std::vector<GLsizei> counts;
+  std::vector<const void*> offsets;
+  for (const index_run& run : runs) {
+    counts.push_back(GLsizei(run.count));
+    offsets.push_back(reinterpret_cast<const void*>(run.first * sizeof(std::uint32_t)));
+  }
   glBindVertexArray(vertex_array_);
-  glDrawElements(GL_TRIANGLES, GLsizei(run.count), GL_UNSIGNED_INT, reinterpret_cast<const void*>(run.first * sizeof(std::uint32_t)));
+  glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), GLsizei(runs.size()));
 }
 
 }  // namespace dstrans::gl

@@ -92,12 +92,13 @@ class scene_geometry {
   ~scene_geometry();
   scene_geometry(const scene_geometry&) = delete;
   scene_geometry& operator=(const scene_geometry&) = delete;
-  // Draws what `pass` asks for.
+  // Draws what `pass` asks for, less the objects outside its clip volume (frame/culling.hpp).
   void operator()(const scheduled_pass& pass) const;
 
  private:
   GLuint vertex_array_ = 0, buffers_[5] = {0, 0, 0, 0, 0};  // positions, normals, materials, indices, texture coordinates
   std::size_t hair_first_ = 0, index_count_ = 0;
+  std::vector<mesh_part> parts_;  // the objects, culled in each pass
 };
 
 }  // namespace dstrans::gl

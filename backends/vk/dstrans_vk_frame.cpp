@@ -6,6 +6,7 @@
 #include <cstring>
 #include <utility>
 
+#include <dstrans/frame/culling.hpp>
 #include <dstrans/frame/passes.hpp>
 #include <dstrans/particles.hpp>
 
@@ -1070,6 +1071,7 @@ void renderer::record(VkCommandBuffer cmd, const camera& view, const draw_geomet
   const int slot = r.frames_recorded % r.slots;
   frame_block camera_block = sequence_frame(camera_frame(r.description, view, r.o), r.previous, r.sequence, r.plan, r.o);
   std::memcpy(r.camera_blocks[std::size_t(slot)].mapped, &camera_block, sizeof camera_block);
+  set_camera_view(r.schedule, camera_block.view_proj);
   // Temporal interlacing draws into the other G-buffer and light buffer each frame; the last frame's become
   // the second layer, which the compose pass reads.
   if (r.plan.temporal && r.sequence > 0) r.swap_layers();
@@ -1134,6 +1136,7 @@ result<std::unique_ptr<scene_geometry>> scene_geometry::create(device& dev, cons
   const scene_mesh m = flatten(s);
   g->hair_first_ = m.hair_first;
   g->index_count_ = m.indices.size();
+  g->parts_ = m.parts;
   const VkBufferUsageFlags vertex_use = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
   result<buffer> made[] = {filled(dev, m.positions, vertex_use, "scene positions"), filled(dev, m.normals, vertex_use, "scene normals"),
                            filled(dev, m.materials, vertex_use, "scene materials"),
@@ -1153,14 +1156,14 @@ scene_geometry::~scene_geometry() {
 }
 
 void scene_geometry::operator()(VkCommandBuffer cmd, const scheduled_pass& pass) const {
-  const index_run run = drawn_indices(pass.draws, hair_first_, index_count_);
-  if (run.count == 0) return;
+  const std::vector<index_run> runs = visible_runs(parts_, hair_first_, index_count_, pass);
+  if (runs.empty()) return;
   const VkBuffer streams[] = {buffers_[0].handle, buffers_[1].handle, buffers_[2].handle};
   const VkDeviceSize offsets[] = {0, 0, 0};
   vkCmdBindVertexBuffers(cmd, 0, 3, streams, offsets);
   if (buffers_[4].handle) vkCmdBindVertexBuffers(cmd, texture_coordinates_binding, 1, &buffers_[4].handle, offsets);
   vkCmdBindIndexBuffer(cmd, buffers_[3].handle, 0, VK_INDEX_TYPE_UINT32);
-  vkCmdDrawIndexed(cmd, std::uint32_t(run.count), 1, std::uint32_t(run.first), 0, 0);
+  for (const index_run& run : runs) vkCmdDrawIndexed(cmd, std::uint32_t(run.count), 1, std::uint32_t(run.first), 0, 0);
 }
 
 }  // namespace dstrans::vk

@@ -119,7 +119,7 @@ class scene_geometry {
   ~scene_geometry();
   scene_geometry(const scene_geometry&) = delete;
   scene_geometry& operator=(const scene_geometry&) = delete;
-  // Binds the streams and draws what `pass` asks for.
+  // Binds the streams and draws what `pass` asks for, less the objects outside its clip volume.
   void operator()(VkCommandBuffer cmd, const scheduled_pass& pass) const;
   // The vertex input of its streams, for renderer::create.
   vertex_input input() const;
@@ -129,6 +129,7 @@ class scene_geometry {
   device& dev_;
   buffer buffers_[5];  // positions, normals, materials, indices, texture coordinates (none without)
   std::size_t hair_first_ = 0, index_count_ = 0;
+  std::vector<mesh_part> parts_;  // the objects, culled in each pass
 };
 
 }  // namespace dstrans::vk

@@ -8,6 +8,7 @@
 //   dstrans::scene_mesh m = dstrans::flatten(s);   // one world-space vertex array for one draw call
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -128,14 +129,24 @@ struct scene {
   std::vector<texture> textures;  // what materials sample (material::texture)
 };
 
+// One object's indices in a scene_mesh, `count` from `first`, and a sphere that holds its vertices (world
+// space), against which a pass culls it (frame/culling.hpp).
+struct mesh_part {
+  std::size_t first = 0, count = 0;
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+};
+
 // A whole scene in world space, for one draw call: vertex i has positions[i], normals[i], materials[i]
 // and, where some shape has texture coordinates, uvs[i] ((0, 0) for shapes without). Objects of hair
-// materials come last, from index hair_first on, with tangents for normals.
+// materials come last, from index hair_first on, with tangents for normals. `parts` are the objects, in
+// index order.
 struct scene_mesh {
   std::vector<glm::vec3> positions, normals;
   std::vector<glm::vec2> uvs;
   std::vector<std::uint32_t> materials, indices;
   std::size_t hair_first = 0;
+  std::vector<mesh_part> parts;
 };
 
 // Whether some shape of `s` has texture coordinates (and flatten gives scene_mesh::uvs).
@@ -155,13 +166,20 @@ inline scene_mesh flatten(const scene& s) {
       const auto base = std::uint32_t(m.positions.size());
       // Normals are transformed by the inverse transpose; tangents, along the surface, by the matrix itself.
       const glm::mat3 normal_matrix = hair ? glm::mat3(o.transform) : glm::transpose(glm::inverse(glm::mat3(o.transform)));
+      glm::vec3 lo(0.0f), hi(0.0f);
       for (std::size_t i = 0; i < o.geometry.positions.size(); ++i) {
-        m.positions.push_back(glm::vec3(o.transform * glm::vec4(o.geometry.positions[i], 1.0f)));
+        const glm::vec3 p(o.transform * glm::vec4(o.geometry.positions[i], 1.0f));
+        lo = i ? glm::min(lo, p) : p;
+        hi = i ? glm::max(hi, p) : p;
+        m.positions.push_back(p);
         m.normals.push_back(glm::normalize(normal_matrix * o.geometry.normals[i]));
         m.materials.push_back(o.material);
         if (uvs) m.uvs.push_back(i < o.geometry.uvs.size() ? o.geometry.uvs[i] : glm::vec2(0.0f));
       }
+      mesh_part part{m.indices.size(), o.geometry.indices.size(), 0.5f * (lo + hi), 0.0f};
+      for (std::size_t i = base; i < m.positions.size(); ++i) part.radius = std::max(part.radius, glm::length(m.positions[i] - part.centre));
       for (std::uint32_t i : o.geometry.indices) m.indices.push_back(base + i);
+      m.parts.push_back(part);
     }
   }
   return m;

@@ -635,6 +635,7 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
         scheduled_pass& sh = add(pass_step::shadow, "shadow", "shadow pass, light " + n + (views > 1 ? ", face " + std::to_string(v) : ""),
                                  pass_kind::geometry, l, {"scene"}, {"shadow map"});
         sh.index = v;
+        sh.view_proj = light_frame(s, lights[i], o, v).view_proj;
         sh.state = depth_tested;
         sh.draws = geometry_set::everything;
         if (v == 0)  // a cube's later faces keep what the first one cleared

@@ -85,6 +85,9 @@ struct scheduled_pass {
   // Before it draws: its colour attachments cleared to these (none: kept), its depth to the far plane.
   std::vector<glm::vec4> clears;
   bool clear_depth = false;
+  // The world-to-clip matrix its geometry is drawn with: a shadow pass's light view's, every other pass's
+  // the camera's this frame (set_camera_view), so that an engine can cull (frame/culling.hpp). Zero: unknown.
+  glm::mat4 view_proj{0.0f};
 };
 
 struct frame_schedule {
@@ -102,6 +105,13 @@ inline index_run drawn_indices(geometry_set set, std::size_t hair_first, std::si
   if (set == geometry_set::surfaces) return {0, hair_first};
   if (set == geometry_set::hair) return {hair_first, count - hair_first};
   return {0, count};
+}
+
+// Gives every pass of `s` but the shadow passes the camera's world-to-clip matrix of this frame: what a
+// renderer does before it runs them.
+inline void set_camera_view(frame_schedule& s, const glm::mat4& view_proj) {
+  for (scheduled_pass& pass : s.passes)
+    if (pass.step != pass_step::shadow) pass.view_proj = view_proj;
 }
 
 // What a frame's passes took on the GPU: the timers in the order they ran (a pass each), each timer's

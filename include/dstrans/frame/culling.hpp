@@ -1,0 +1,59 @@
+// Culling a flattened scene's objects against the clip volume a pass draws them with
+// (scheduled_pass::view_proj). An object whose bounding sphere lies wholly outside one of the volume's
+// planes has no triangle that could reach a pixel, so leaving it out changes no pixel; it saves the
+// object's vertices and triangle setup, most of a spot light's shadow pass on a CPU rasteriser.
+//
+//   const dstrans::scene_mesh m = dstrans::flatten(s);
+//   for (const dstrans::index_run& run : dstrans::visible_runs(m.parts, m.hair_first, m.indices.size(), pass))
+//     draw_my_indices(run.first, run.count);
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "../scene.hpp"
+#include "schedule.hpp"
+
+namespace dstrans {
+
+// Whether the sphere at `centre` of `radius` (world space) lies wholly outside the clip volume of
+// `view_proj`: beyond one of its planes -w <= x <= w, -w <= y <= w and, unless `depth_clamped` (depth
+// clamping draws what lies beyond the near and far planes), -w <= z <= w. That near plane is OpenGL's;
+// it holds Vulkan's (0 <= z), so neither API's picture loses a pixel. The sphere is widened by 1e-4 of
+// its size against rounding. A zero matrix culls nothing, and nor does a NaN anywhere.
+inline bool outside_clip(const glm::mat4& view_proj, glm::vec3 centre, float radius, bool depth_clamped) {
+  const glm::mat4 rows = glm::transpose(view_proj);
+  const glm::vec4 planes[6] = {rows[3] + rows[0], rows[3] - rows[0], rows[3] + rows[1],
+                               rows[3] - rows[1], rows[3] + rows[2], rows[3] - rows[2]};
+  const float margin = radius + 1e-4f * (radius + glm::length(centre)) + 1e-6f;
+  for (int k = 0; k < (depth_clamped ? 4 : 6); ++k) {
+    const glm::vec3 n(planes[k]);
+    const float length = glm::length(n), value = glm::dot(n, centre) + planes[k].w;
+    if (length > 0.0f ? value < -margin * length : value < 0.0f) return true;
+  }
+  return false;
+}
+
+// The runs of indices `pass` draws of a flattened scene (scene_mesh: its `parts` in index order, hair from
+// `hair_first`, `count` indices in all): drawn_indices' run less the parts outside the pass's clip
+// volume, neighbouring parts drawn as one run. Without parts, drawn_indices' run.
+inline std::vector<index_run> visible_runs(const std::vector<mesh_part>& parts, std::size_t hair_first, std::size_t count,
+                                           const scheduled_pass& pass) {
+  const index_run whole = drawn_indices(pass.draws, hair_first, count);
+  if (whole.count == 0) return {};
+  if (parts.empty()) return {whole};
+  std::vector<index_run> out;
+  for (const mesh_part& part : parts) {
+    if (part.first < whole.first || part.first + part.count > whole.first + whole.count || part.count == 0) continue;
+    if (outside_clip(pass.view_proj, part.centre, part.radius, pass.state.depth_clamp)) continue;
+    if (!out.empty() && out.back().first + out.back().count == part.first)
+      out.back().count += part.count;
+    else
+      out.push_back({part.first, part.count});
+  }
+  return out;
+}
+
+}  // namespace dstrans
