@@ -445,6 +445,10 @@ TEST_CASE("temporal interlacing alternates every predicate's phase and hands eac
   const render::frame_block next = render::sequence_frame(render::camera_frame(room, moved, o), still, 2, p, o);
   CHECK(next.interlace == glm::ivec4(0, 0, 1, 0));
   CHECK(next.view_proj != still.view_proj);
+  // The compose pass's still-camera variant: only where a previous frame was seen from the same place.
+  CHECK(render::still_camera(still));
+  CHECK_FALSE(render::still_camera(first));
+  CHECK_FALSE(render::still_camera(next));
   // A world point's clip position now, taken to the previous frame, is where that frame's camera saw it;
   // and back again.
   const glm::vec4 world(0.3f, 0.9f, -0.4f, 1.0f);
@@ -465,6 +469,7 @@ TEST_CASE("temporal interlacing alternates every predicate's phase and hands eac
   const render::frame_block plain = render::sequence_frame(render::camera_frame(room, moved, o), still, 2, render::plan_of(room, o), o);
   CHECK(plain.interlace == glm::ivec4(0));
   CHECK(plain.to_previous == glm::mat4(1.0f));
+  CHECK_FALSE(render::still_camera(plain));
 }
 
 TEST_CASE("the frame block counts the scene's lights, which a shader loops over, none included", "[schedule]") {

@@ -543,7 +543,7 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
         }
         if (plan.around_glass) bind_textures(binding(slot::glass_layers), glass_layers);
       }
-      glUseProgram(previous.interlace.w == 1 ? compose_still_prog : compose_prog);
+      glUseProgram(still_camera(previous) ? compose_still_prog : compose_prog);
       draw_fullscreen(fullscreen_vao);
       break;
     case pass_step::capture: {

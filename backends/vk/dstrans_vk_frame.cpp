@@ -933,7 +933,7 @@ void renderer::impl::copy_shadow_picture(VkCommandBuffer cmd) {
 void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, VkDescriptorSet set, int slot,
                          const draw_geometry& draw) {
   // The still-camera variant binds what the compose pass binds: the pass's sets serve both.
-  const program& p = pass.step == pass_step::compose && previous.interlace.w == 1 ? compose_still : program_of(pass);
+  const program& p = pass.step == pass_step::compose && still_camera(previous) ? compose_still : program_of(pass);
   const VkDeviceSize zero = 0;
   const std::uint32_t i = std::uint32_t(std::max(pass.light, 0));
   if (pass.step == pass_step::capture) {

@@ -226,6 +226,9 @@ frame_block camera_frame(const scene& s, const camera& c, const options& o);
 frame_block light_frame(const scene& s, const light_block& l, const options& o, int view = 0);
 // How many views light `l`'s shadow map is drawn from: six for a point light's cube, else one.
 int shadow_views(const light_block& l);
+// Whether frame `f` of sequence_frame is composed by the compose pass's still-camera variant
+// (DST_STILL_CAMERA): temporal interlacing, and the previous frame was seen with the same view_proj.
+bool still_camera(const frame_block& f);
 std::vector<material_block> material_blocks(const scene& s);
 std::vector<light_block> light_blocks(const scene& s);
 // Light volumes: the model the options pick, the atlas of the scene's particle systems (a region of
@@ -743,6 +746,8 @@ inline frame_block sequence_frame(frame_block f, const frame_block& previous, st
   }
   return f;
 }
+
+inline bool still_camera(const frame_block& f) { return f.interlace.w == 1; }
 
 inline int shadow_views(const light_block& l) { return shader::dst_map_cube(l.cos_inner) ? 6 : 1; }
 
