@@ -1,14 +1,14 @@
 // Culling a flattened scene's objects against the clip volume a pass draws them with
 // (scheduled_pass::view_proj). An object whose bounding sphere lies wholly outside one of the volume's
 // planes has no triangle that could reach a pixel, so leaving it out changes no pixel; it saves the
-// object's vertices and triangle setup, most of a spot light's shadow pass on a CPU rasteriser.
+// object's vertices and triangle setup, a third of a point light's shadow pass on a CPU rasteriser,
+// whose six cube faces each see a part of the scene.
 //
 //   const dstrans::scene_mesh m = dstrans::flatten(s);
 //   for (const dstrans::index_run& run : dstrans::visible_runs(m.parts, m.hair_first, m.indices.size(), pass))
 //     draw_my_indices(run.first, run.count);
 #pragma once
 
-#include <cmath>
 #include <vector>
 
 #include <glm/glm.hpp>
