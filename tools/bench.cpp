@@ -44,12 +44,13 @@ using json = nlohmann::ordered_json;
 
 const char* const usage =
     "usage: dstrans bench [--quick] --out DIR [--backend gl|vk] [--device N|NAME] [--width W --height H]\n"
-    "                     [--shadow-size N] [--frames N]\n"
+    "                     [--shadow-size N] [--frames N] [--pairs N]\n"
     "renders glass_room and its variants with every technique and setting the thesis compared, and writes\n"
     "DIR/results.json and DIR/report.md; --quick measures fewer light counts at a smaller size (320x180,\n"
     "256^2 shadow maps, 5 frames a run; else 640x360, 512^2, 9), which the other options override. --device\n"
     "chooses the GPU by index or part of its name for both APIs (`--device list` lists them); every record\n"
-    "names the device and driver it ran on\n";
+    "names the device and driver it ran on. A paired comparison times frames of A and B in turns until its\n"
+    "95% interval is within 3% of the ratio or it has timed 20 pairs (--quick; else 60), or --pairs N\n";
 
 // Runs `argv` (found on the PATH) and waits for it: a failure unless it exits 0.
 result<bool> run_program(const std::vector<std::string>& argv) {
@@ -648,8 +649,16 @@ result<json> around_glass_records(const scene& s, const std::string& name, const
   return records;
 }
 
-// How many frames a paired comparison measures (cli::time_paired).
-pair_count pairs_of(bool quick) { return quick ? pair_count{5, 20, 0.03} : pair_count{15, 60, 0.03}; }
+// How many frames a paired comparison measures (cli::time_paired): with --quick fewer, and at most
+// `max_pairs` where one is given (0: none).
+pair_count pairs_of(bool quick, int max_pairs) {
+  pair_count c = quick ? pair_count{5, 20, 0.03} : pair_count{15, 60, 0.03};
+  if (max_pairs > 0) {
+    c.max_frames = max_pairs;
+    c.min_frames = std::min(c.min_frames, max_pairs);
+  }
+  return c;
+}
 
 // One side of a paired comparison: its options, how its record names it, and the timers compared (the
 // whole frame where none are named).
@@ -667,7 +676,7 @@ struct paired_side {
 // time and in bytes.
 template <class Clock>
 result<json> paired_record(const std::string& comparison, const scene& s, const char* name, const paired_side& a,
-                           const paired_side& b, std::optional<std::vector<std::string>> alike, json target, bool quick,
+                           const paired_side& b, std::optional<std::vector<std::string>> alike, json target, const pair_count& pairs,
                            const std::string& backend, Clock&& clock, limit_meter& meter, const scene* without = nullptr) {
   auto clock_of = [&](const render::options& o) -> result<frame_clock> {
     auto with = clock(s, o);
@@ -680,7 +689,7 @@ result<json> paired_record(const std::string& comparison, const scene& s, const 
   if (!ca) return failure{ca.error()};
   auto cb = clock_of(b.o);
   if (!cb) return failure{cb.error()};
-  auto r = cli::time_paired(*ca, *cb, 2, pairs_of(quick), a.timers, b.timers);
+  auto r = cli::time_paired(*ca, *cb, 2, pairs, a.timers, b.timers);
   if (!r) return failure{r.error()};
   auto bytes_of = [&](const render::options& o) {
     auto of = [&](const scene& x) {
@@ -731,7 +740,7 @@ result<json> paired_record(const std::string& comparison, const scene& s, const 
 // The targets' ratios on glass_room (scene "glass_room_paired"), whole frames, the passes that move the same
 // bytes taken as alike.
 template <class Clock>
-result<json> paired_records(const scene& room, const render::options& base, const std::vector<int>& lights, bool quick,
+result<json> paired_records(const scene& room, const render::options& base, const std::vector<int>& lights, const pair_count& pairs,
                             const std::string& backend, Clock&& clock, limit_meter& meter) {
   using T = render::technique;
   using S = render::shadow_mode;
@@ -748,7 +757,7 @@ result<json> paired_records(const scene& room, const render::options& base, cons
   // `target`: {"at_least" or "at_most": ratio}, or null where no source sets one.
   auto measure_on = [&](const std::string& comparison, const scene& s, const paired_side& a, const paired_side& b,
                         const json& target) -> result<bool> {
-    auto r = paired_record(comparison, s, "glass_room_paired", a, b, std::nullopt, target, quick, backend, clock, meter);
+    auto r = paired_record(comparison, s, "glass_room_paired", a, b, std::nullopt, target, pairs, backend, clock, meter);
     if (!r) return failure{r.error()};
     records.push_back(*r);
     return true;
@@ -826,7 +835,7 @@ result<json> paired_records(const scene& room, const render::options& base, cons
 // shaders differ.
 template <class Clock>
 result<json> technique_pairs(const scene& hair, const scene& smoke, const json& layers, const json& volumes,
-                             const render::options& base, bool quick, const std::string& backend, Clock&& clock,
+                             const render::options& base, const pair_count& pairs, const std::string& backend, Clock&& clock,
                              limit_meter& meter) {
   using L = render::options::layers;
   using P = render::options::particle_light;
@@ -843,7 +852,7 @@ result<json> technique_pairs(const scene& hair, const scene& smoke, const json& 
   auto hair_pair = paired_record("forward / k-buffer, capture and resolve", zoomed(hair, 1.0f), "hair_paired",
                                  {kbuffer, {{"technique", "layers-deferred"}, {"k", 8}}, capture},
                                  {every, {{"technique", "layers-forward"}}, capture}, std::vector<std::string>{"capture"},
-                                 {{"at_least", 2.0}, {"rmse_at_most", 9.0}}, quick, backend, clock, meter);
+                                 {{"at_least", 2.0}, {"rmse_at_most", 9.0}}, pairs, backend, clock, meter);
   if (!hair_pair) return failure{hair_pair.error()};
   (*hair_pair)["rmse"] = (*k8)["rmse_transparent"];
   records.push_back(*hair_pair);
@@ -875,7 +884,7 @@ result<json> technique_pairs(const scene& hair, const scene& smoke, const json& 
                                   {volume, {{"technique", (*chosen)["technique"]}, {"cells", volume.volume_cells}}, {}},
                                   {lit, {{"technique", "volumes-forward"}}, {}}, std::vector<std::string>{},
                                   {{"at_least", 7.0}, {"rmse_at_most", rmse_at_most}, {"bytes_per_cell_at_most", bytes_at_most}},
-                                  quick, backend, clock, meter, &bare);
+                                  pairs, backend, clock, meter, &bare);
   if (!smoke_pair) return failure{smoke_pair.error()};
   (*smoke_pair)["rmse"] = (*chosen)["rmse"];
   (*smoke_pair)["bytes_per_cell"] = (*chosen)["settings"]["bytes_per_cell"];
@@ -904,6 +913,8 @@ int bench(std::vector<std::string> args) {
     base.height = to_int(take_option(args, "--height", quick ? "180" : "360"), 1, 8192, "--height");
     base.shadow_size = to_int(take_option(args, "--shadow-size", quick ? "256" : "512"), 16, 8192, "--shadow-size");
     base.frames = to_int(take_option(args, "--frames", quick ? "5" : "9"), 1, 1000, "--frames");
+    const std::string max_pairs = take_option(args, "--pairs", "");
+    const pair_count pairs = pairs_of(quick, max_pairs.empty() ? 0 : to_int(max_pairs, 1, 1000, "--pairs"));
     for (const std::string& a : operands(args)) throw usage_error{"unknown argument '" + a + "'"};
     if (out.empty()) throw usage_error{"bench needs --out DIR"};
     if (backend != "gl" && backend != "vk") throw usage_error{"--backend must be gl or vk"};
@@ -1096,7 +1107,7 @@ int bench(std::vector<std::string> args) {
 #endif
       return failure{"no backend"};
     };
-    auto paired = paired_records(scenes.at("glass_room"), base, lights, quick, backend, clock, meter);
+    auto paired = paired_records(scenes.at("glass_room"), base, lights, pairs, backend, clock, meter);
     if (!paired) {
       std::fprintf(stderr, "dstrans bench: paired runs on %s: %s\n", backend.c_str(), paired.error().c_str());
       return 1;
@@ -1129,7 +1140,7 @@ int bench(std::vector<std::string> args) {
       rough.settings["rough_refraction"] = true;
       for (auto [comparison, a, b] : {std::tuple{"peeling / interlaced, transparent shadows", &interlaced, &peeling},
                                       std::tuple{"rough / sharp refraction, interlaced", &interlaced, &rough}}) {
-        auto r = paired_record(comparison, *shelf, "glass_shelf_paired", *a, *b, std::nullopt, nullptr, quick, backend, clock, meter);
+        auto r = paired_record(comparison, *shelf, "glass_shelf_paired", *a, *b, std::nullopt, nullptr, pairs, backend, clock, meter);
         if (!r) {
           std::fprintf(stderr, "dstrans bench: glass_shelf.gltf in pairs on %s: %s\n", backend.c_str(), r.error().c_str());
           return 1;
@@ -1164,7 +1175,7 @@ int bench(std::vector<std::string> args) {
 #endif
         return failure{"no backend"};
       };
-      auto sequence_clock = [&](const std::vector<scene>& frames, const render::options& o) -> result<frame_clock> {
+      auto clock_sequence = [&](const std::vector<scene>& frames, const render::options& o) -> result<frame_clock> {
 #ifdef DSTRANS_HAVE_GL
         if (on.gl) return render::gl_clock(frames, o, pass_shaders());
 #endif
@@ -1186,12 +1197,12 @@ int bench(std::vector<std::string> args) {
       }
       for (const json& r : *volumes) results.push_back(r);
       if (b == backend) {
-        auto pairs = technique_pairs(*hair, *smoke, *layers, *volumes, base, quick, b, clock, meter);
-        if (!pairs) {
-          std::fprintf(stderr, "dstrans bench: hair and smoke in pairs on %s: %s\n", b.c_str(), pairs.error().c_str());
+        auto technique_paired = technique_pairs(*hair, *smoke, *layers, *volumes, base, pairs, b, clock, meter);
+        if (!technique_paired) {
+          std::fprintf(stderr, "dstrans bench: hair and smoke in pairs on %s: %s\n", b.c_str(), technique_paired.error().c_str());
           return 1;
         }
-        for (const json& r : *pairs) results.push_back(r);
+        for (const json& r : *technique_paired) results.push_back(r);
       }
       render::options post_base = base;
       post_base.refraction = 8.0f;
@@ -1237,7 +1248,7 @@ int bench(std::vector<std::string> args) {
       }
       for (const json& r : *soft) results.push_back(r);
       auto temporal = temporal_records(with_lights(scenes.at("glass_room"), fixed), shadowed, quick ? 6 : 24, b, draw_sequence,
-                                       sequence_clock, pairs_of(quick));
+                                       clock_sequence, pairs);
       if (!temporal) {
         std::fprintf(stderr, "dstrans bench: temporal interlacing on %s: %s\n", b.c_str(), temporal.error().c_str());
         return 1;
