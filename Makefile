@@ -2,9 +2,11 @@
 # (apt-get update only then), configure, build incrementally, then do their job.
 #   make demo       builds the dstrans command alone and renders glass_room and the glTF glass_shelf on OpenGL
 #                   and Vulkan into out/demo/
-#   make test       builds and runs every test (ctest) in build/, then again under the sanitizers; one test checks
-#                   that every Debian package the build found is one this Makefile installs
-#   make sanitize   the suite alone under AddressSanitizer, LeakSanitizer and UBSan, in build-sanitize/
+#   make test       builds and runs every test (ctest) in build/, then the suite under the sanitizers; one test
+#                   checks that every Debian package the build found is one this Makefile installs
+#   make sanitize   the suite alone under AddressSanitizer, LeakSanitizer and UBSan, in build-sanitize/: every
+#                   test that draws no frame, and of those that do, the ones that draw the same frames on both
+#                   backends and through the renderers' engine API (tests/CMakeLists.txt says why)
 
 BUILD ?= build
 SANITIZE_BUILD ?= build-sanitize

@@ -87,7 +87,7 @@ struct engine_meshes {
 
 }  // namespace
 
-TEST_CASE("GL renderer: one renderer draws many frames and sizes, each as a new renderer would", "[render][gl]") {
+TEST_CASE("GL renderer: one renderer draws many frames and sizes, each as a new renderer would", "[render][renderer][gl]") {
   auto ctx = gl::headless_context::create();
   if (!ctx) {
     WARN("skipped GL: " << ctx.error());
@@ -122,7 +122,7 @@ TEST_CASE("GL renderer: one renderer draws many frames and sizes, each as a new 
   CHECK((*ctx)->debug_messages().empty());
 }
 
-TEST_CASE("GL renderer: the engine's own vertex arrays draw the frame scene_geometry draws", "[render][gl]") {
+TEST_CASE("GL renderer: the engine's own vertex arrays draw the frame scene_geometry draws", "[render][renderer][gl]") {
   auto ctx = gl::headless_context::create();
   if (!ctx) {
     WARN("skipped GL: " << ctx.error());
@@ -161,7 +161,7 @@ TEST_CASE("GL renderer: the engine's own vertex arrays draw the frame scene_geom
   }
 }
 
-TEST_CASE("GL renderer: no target or program for an effect the scene does not use", "[render][gl]") {
+TEST_CASE("GL renderer: no target or program for an effect the scene does not use", "[render][renderer][gl]") {
   auto ctx = gl::headless_context::create();
   if (!ctx) {
     WARN("skipped GL: " << ctx.error());
@@ -188,7 +188,7 @@ TEST_CASE("GL renderer: no target or program for an effect the scene does not us
   CHECK(lit->targets().lit.framebuffer != 0);
 }
 
-TEST_CASE("GL renderer: temporal interlacing leaves nothing where a pane moved away", "[render][gl][temporal]") {
+TEST_CASE("GL renderer: temporal interlacing leaves nothing where a pane moved away", "[render][renderer][gl][temporal]") {
   auto ctx = gl::headless_context::create();
   if (!ctx) {
     WARN("skipped GL: " << ctx.error());

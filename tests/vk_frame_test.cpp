@@ -93,7 +93,7 @@ std::unique_ptr<vk::renderer> make(vk::device& dev, const scene& s, const render
 
 }  // namespace
 
-TEST_CASE("VK renderer: frames recorded into the engine's command buffers, two in flight, resized", "[render][vk]") {
+TEST_CASE("VK renderer: frames recorded into the engine's command buffers, two in flight, resized", "[render][renderer][vk]") {
   engine e;
   if (!e.open()) return;
   for (const char* file : {"glass_room.json", "hair.json", "smoke.json"}) {
@@ -125,7 +125,7 @@ TEST_CASE("VK renderer: frames recorded into the engine's command buffers, two i
   CHECK(e.hd->validation_messages().empty());
 }
 
-TEST_CASE("VK renderer: the engine's own vertex layout draws the frame scene_geometry draws", "[render][vk]") {
+TEST_CASE("VK renderer: the engine's own vertex layout draws the frame scene_geometry draws", "[render][renderer][vk]") {
   engine e;
   if (!e.open()) return;
   // One interleaved stream, an object a buffer, as an engine might keep its meshes.
@@ -209,7 +209,7 @@ TEST_CASE("VK renderer: the engine's own vertex layout draws the frame scene_geo
   CHECK(e.hd->validation_messages().empty());
 }
 
-TEST_CASE("VK renderer: temporal interlacing leaves nothing where a pane moved away", "[render][vk][temporal]") {
+TEST_CASE("VK renderer: temporal interlacing leaves nothing where a pane moved away", "[render][renderer][vk][temporal]") {
   engine e;
   if (!e.open()) return;
   const frame_tests::moved_pane m = frame_tests::moved_pane_scenes();

@@ -1,7 +1,8 @@
 # Builds and runs a consumer project: cmake -DKIND=subdir|installed -DSOURCE=... -DBUILD=... -DWORK=...
-#   [-DSANITIZE=-fsanitize=...] [-DFILTER=leak_filter.sh] -P consumer.cmake
+#   [-DSANITIZE=-fsanitize=...] [-DFILTER=leak_filter.sh] [-DLAUNCHER=ccache] -P consumer.cmake
 # For KIND=installed, dstrans is first installed from BUILD into WORK/prefix. SANITIZE builds the consumer
-# with those flags (and, with add_subdirectory, dstrans too); FILTER runs it.
+# with those flags (and, with add_subdirectory, dstrans too); FILTER runs it; LAUNCHER compiles through
+# a launcher such as ccache.
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -12,6 +13,9 @@ endfunction()
 
 file(REMOVE_RECURSE ${WORK})
 set(args -DDSTRANS_SOURCE_DIR=${SOURCE})
+if(LAUNCHER)
+  list(APPEND args -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER})
+endif()
 if(SANITIZE)
   list(APPEND args -DCMAKE_CXX_FLAGS=${SANITIZE} -DCMAKE_EXE_LINKER_FLAGS=${SANITIZE})
 endif()
