@@ -1,7 +1,7 @@
 #!/bin/sh
 # Records the regression images: the final image of every example scene (JSON and glTF) under every technique, of
 # glass_room under the example post chain and of its sun and lamp variants with 5 x 5 soft shadows, at
-# 160x90 on both backends, as `dstrans render` makes them.
+# 160x90 with 256^2 shadow maps on both backends, as `dstrans render` makes them.
 # render_test.cpp's [regression] case renders the same frames and compares them with these files.
 #   tests/regression/record.sh build/tools/dstrans
 set -eu
@@ -14,7 +14,7 @@ mkdir -p "$here/images"
 record() {  # record NAME ARGS...: renders and keeps final.png as images/NAME.png
   name=$1
   shift
-  "$tool" render "$@" --width 160 --height 90 --out "$work/$name" >/dev/null
+  "$tool" render "$@" --width 160 --height 90 --shadow-size 256 --out "$work/$name" >/dev/null
   cp "$work/$name/final.png" "$here/images/$name.png"
 }
 for backend in gl vk; do
