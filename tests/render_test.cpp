@@ -27,6 +27,7 @@
 #include "effect_scenes.hpp"
 #include "gltf_writer.hpp"
 #include <scene_json.hpp>
+#include <scene_lights.hpp>
 
 #include <dstrans_gl.hpp>
 #include <dstrans_gl_context.hpp>
@@ -108,16 +109,6 @@ scene example(const std::string& file) {
   INFO(s.error());
   REQUIRE(s);
   return *s;
-}
-
-// `s` lit by its first `n` spot lights alone: where a test checks what the lights do not change, a few of
-// glass_room's 64 shadowed spot lights draw its frames many times faster.
-scene with_spot_lights(scene s, std::size_t n) {
-  std::vector<light> spots;
-  for (const light& l : s.lights)
-    if (l.kind == light_kind::spot && spots.size() < n) spots.push_back(l);
-  s.lights = spots;
-  return s;
 }
 
 options small(int w, int h) {
@@ -2424,7 +2415,7 @@ TEST_CASE("edge-aware reconstruction returns a constant layer exactly and does n
 
 TEST_CASE("temporal interlacing: a still camera's second frame is depth peeling's on glass, its first the spatial one's",
           "[temporal][render]") {
-  const scene room = with_spot_lights(example("glass_room.json"), 2);
+  const scene room = cli::with_spot_lights(example("glass_room.json"), 2);
   for (backend b : backends)
     for (render::predicate p : {render::predicate::rows, render::predicate::columns, render::predicate::checker}) {
       options o = small(160, 90);
@@ -2472,7 +2463,7 @@ TEST_CASE("temporal interlacing under a moving camera: nearer peeling on glass t
   o.layout = render::gbuffer_layout::compact;
   o.reconstruct = true;
   double temporal_sum = 0.0, spatial_sum = 0.0;
-  for (const auto& [path, frames] : cli::temporal_paths(with_spot_lights(example("glass_room.json"), 2), 3)) {
+  for (const auto& [path, frames] : cli::temporal_paths(cli::with_spot_lights(example("glass_room.json"), 2), 3)) {
     if (path != "orbit" && path != "pan" && path != "dolly") continue;
     o.method = render::technique::peeling;
     auto peeled = render::run_gl_sequence(frames, o, pass_shaders());
@@ -2568,7 +2559,7 @@ TEST_CASE("the temporal benchmark: a record a path and method, peeling its own r
   }
   options o = small(96, 54);
   auto t = cli::temporal_records(
-      with_spot_lights(example("glass_room.json"), 2), o, 2, "gl",
+      cli::with_spot_lights(example("glass_room.json"), 2), o, 2, "gl",
       [](const std::vector<scene>& f, const options& with) { return render::run_gl_sequence(f, with, pass_shaders()); },
       [](const std::vector<scene>& f, const options& with) { return render::gl_clock(f, with, pass_shaders()); }, {3, 3, 1.0});
   INFO((t ? "" : t.error()));

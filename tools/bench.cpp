@@ -34,6 +34,7 @@
 #include "run_vk.hpp"
 #endif
 #include "scene_json.hpp"
+#include "scene_lights.hpp"
 #include "shipped_files.hpp"
 
 namespace dstrans::cli {
@@ -133,15 +134,6 @@ render::options exact_options(render::options o) {
   return o;
 }
 
-// The scene with only its first `n` spot lights (the thesis lit its scene with spot lights).
-scene with_lights(const scene& s, int n) {
-  scene out = s;
-  out.lights.clear();
-  for (const light& l : s.lights)
-    if (l.kind == light_kind::spot && int(out.lights.size()) < n) out.lights.push_back(l);
-  return out;
-}
-
 // glass_room lit three ways, each light casting shadows, named as the report names them: by 2 of its spot
 // lights (as Table 4.3), by a sun alone (a directional light: an orthographic map over the whole scene) and
 // by a lamp alone hanging between the shelves (a point light: a cube of six faces in tiles of the map).
@@ -152,10 +144,10 @@ std::vector<std::pair<std::string, scene>> shadow_rooms(const scene& room) {
   lamp.kind = light_kind::point;
   lamp.position = {0.05f, 2.55f, 0.15f};
   lamp.range = 9.0f;
-  std::vector<std::pair<std::string, scene>> rooms = {{"2 spot lights", with_lights(room, 2)}};
+  std::vector<std::pair<std::string, scene>> rooms = {{"2 spot lights", with_spot_lights(room, 2)}};
   for (light l : {sun, lamp}) {
     l.shadows = true;
-    scene alone = with_lights(room, 0);
+    scene alone = with_spot_lights(room, 0);
     alone.lights = {l};
     rooms.push_back({l.kind == light_kind::point ? "a point light" : "a directional light", alone});
   }
@@ -764,7 +756,7 @@ result<json> paired_records(const scene& room, const render::options& base, cons
   };
   auto measure = [&](const std::string& comparison, int n, const paired_side& a, const paired_side& b, const char* bound,
                      double target, bool applies) {
-    return measure_on(comparison, with_lights(room, n), a, b, applies ? json{{bound, target}} : json(nullptr));
+    return measure_on(comparison, with_spot_lights(room, n), a, b, applies ? json{{bound, target}} : json(nullptr));
   };
   for (int n : lights) {
     if (n > 0)
@@ -809,7 +801,7 @@ result<json> paired_records(const scene& room, const render::options& base, cons
     side.settings["shadow_filter"] = 5;
     return side;
   };
-  if (auto ok = measure_on("filtered 5x5 / hard, transparent shadows", with_lights(room, 2), with(T::interlaced, S::transparent, true),
+  if (auto ok = measure_on("filtered 5x5 / hard, transparent shadows", with_spot_lights(room, 2), with(T::interlaced, S::transparent, true),
                            soft(with(T::interlaced, S::transparent, true)), nullptr);
       !ok)
     return failure{ok.error()};
@@ -988,7 +980,7 @@ int bench(std::vector<std::string> args) {
     json results = json::array();
     for (std::size_t k = 0; k < configs.size(); ++k) {
       const config& c = configs[k];
-      const scene s = with_lights(scenes.at(c.scene), c.lights);
+      const scene s = with_spot_lights(scenes.at(c.scene), c.lights);
       auto options_of = [&](render::technique t) {
         render::options o = base;
         o.method = t;
@@ -1206,7 +1198,7 @@ int bench(std::vector<std::string> args) {
       }
       render::options post_base = base;
       post_base.refraction = 8.0f;
-      auto post = post_records(with_lights(scenes.at("glass_room"), fixed), post_base, b, draw);
+      auto post = post_records(with_spot_lights(scenes.at("glass_room"), fixed), post_base, b, draw);
       if (!post) {
         std::fprintf(stderr, "dstrans bench: post-processing on %s: %s\n", b.c_str(), post.error().c_str());
         return 1;
@@ -1214,13 +1206,13 @@ int bench(std::vector<std::string> args) {
       for (const json& r : *post) results.push_back(r);
       render::options shadowed = post_base;
       shadowed.shadows = render::shadow_mode::transparent;
-      auto layers_sweep = reconstruct_records(with_lights(scenes.at("glass_room"), fixed), shadowed, b, draw);
+      auto layers_sweep = reconstruct_records(with_spot_lights(scenes.at("glass_room"), fixed), shadowed, b, draw);
       if (!layers_sweep) {
         std::fprintf(stderr, "dstrans bench: reconstruction on %s: %s\n", b.c_str(), layers_sweep.error().c_str());
         return 1;
       }
       for (const json& r : *layers_sweep) results.push_back(r);
-      auto specular = specular_records(with_lights(scenes.at("glass_room"), fixed), shadowed, b, draw);
+      auto specular = specular_records(with_spot_lights(scenes.at("glass_room"), fixed), shadowed, b, draw);
       if (!specular) {
         std::fprintf(stderr, "dstrans bench: specular on %s: %s\n", b.c_str(), specular.error().c_str());
         return 1;
@@ -1233,7 +1225,7 @@ int bench(std::vector<std::string> args) {
       }
       for (const json& r : *gltf) results.push_back(r);
       for (const auto& [name, s] : {std::pair<const char*, scene>{"hair_panes", *hair_panes},
-                                    std::pair<const char*, scene>{"glass_room_smoke", with_lights(*room_smoke, fixed)}}) {
+                                    std::pair<const char*, scene>{"glass_room_smoke", with_spot_lights(*room_smoke, fixed)}}) {
         auto around = around_glass_records(s, name, shadowed, quick, b, draw);
         if (!around) {
           std::fprintf(stderr, "dstrans bench: %s on %s: %s\n", name, b.c_str(), around.error().c_str());
@@ -1247,7 +1239,7 @@ int bench(std::vector<std::string> args) {
         return 1;
       }
       for (const json& r : *soft) results.push_back(r);
-      auto temporal = temporal_records(with_lights(scenes.at("glass_room"), fixed), shadowed, quick ? 6 : 24, b, draw_sequence,
+      auto temporal = temporal_records(with_spot_lights(scenes.at("glass_room"), fixed), shadowed, quick ? 6 : 24, b, draw_sequence,
                                        clock_sequence, pairs);
       if (!temporal) {
         std::fprintf(stderr, "dstrans bench: temporal interlacing on %s: %s\n", b.c_str(), temporal.error().c_str());
