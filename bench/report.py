@@ -335,6 +335,7 @@ def write_layers(w, layers):
       "reference's time over the variant's; RMSE (0-255) is against the forward reference (every fragment "
       "sorted and shaded fully) over the pixels hair covers, S1's convention. Bytes a pixel count the lists' "
       "heads and a pool of 16 nodes of 16 bytes, and the two tail targets, as nvpro's OIT samples list them. "
+      "The deferred tail is shaded once a pixel from its fragments' gathered inputs, where S1 shades each. "
       "S1 measured at k = 8: RMSE %.0f (deferred), %.0f (tailless), %.0f (all cheap), %s faster than forward."
       % (len(zooms), S1["deferred"], S1["tailless"], S1["cheap"], S1["speedup"]))
     w("")

@@ -45,6 +45,52 @@ TEST_CASE("Eq. 2 shades a strand: no light along the tangent, full diffuse acros
   CHECK(dst_hair_full(glm::vec3(NAN), l, v, colour, light, 1.0f) == glm::vec3(0.0f));
 }
 
+// T T^T's diagonal and its xy, xz, yz, weighted by `w`, added to `diag` and `off`.
+static void gather(glm::vec3& diag, glm::vec3& off, glm::vec3 t, float w) {
+  diag += w * t * t;
+  off += w * glm::vec3(t.x * t.y, t.x * t.z, t.y * t.z);
+}
+
+TEST_CASE("the tail shaded at once: one fragment as dst_hair_cheap, many near their mean, never NaN", "[kbuffer]") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const glm::vec3 colour(0.6f, 0.4f, 0.2f), light(1.5f, 1.0f, 0.5f);
+  double worst_one = 0.0, worst_many = 0.0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    const glm::vec3 l = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(1e-3f));
+    glm::vec3 diag(0.0f), off(0.0f), each(0.0f);
+    float alphas = 0.0f;
+    const int n = 1 + trial % 12;
+    for (int i = 0; i < n; ++i) {
+      const glm::vec3 t = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(1e-3f));
+      const float a = 0.2f + 0.3f * (u(rng) + 1.0f);
+      gather(diag, off, t, a);
+      each += a * dst_hair_cheap(t, l, colour, light, 0.7f);
+      alphas += a;
+    }
+    const glm::vec3 once = dst_hair_cheap_mean(diag / alphas, off / alphas, l, colour * alphas, light, 0.7f);
+    const double error = glm::length(once - each) / glm::length(colour * light * alphas);
+    if (n == 1) worst_one = std::max(worst_one, error);
+    else {
+      CHECK(glm::all(glm::greaterThanEqual(once, each - glm::vec3(1e-4f))));  // Jensen: never darker
+      worst_many = std::max(worst_many, error);
+    }
+  }
+  CHECK(worst_one < 1e-5);
+  // sqrt(E[s^2]) - E[s] for sines in [0, 1] is at most 1/4 (s 0 or 1: sqrt(p) - p), here times visibility 0.7.
+  CHECK(worst_many <= 0.25 * 0.7 + 1e-4);
+  // Two tangents across L (sin 1) and along it (sin 0), alike: the root of the mean sin^2, sqrt(1/2).
+  glm::vec3 diag(0.0f), off(0.0f);
+  gather(diag, off, {1, 0, 0}, 0.5f);
+  gather(diag, off, {0, 1, 0}, 0.5f);
+  CHECK(glm::length(dst_hair_cheap_mean(diag, off, {0, 1, 0}, glm::vec3(1.0f), glm::vec3(1.0f), 1.0f) - glm::vec3(std::sqrt(0.5f))) < 1e-6f);
+  CHECK(dst_hair_cheap_mean(glm::vec3(NAN), off, {0, 1, 0}, colour, light, 1.0f) == glm::vec3(0.0f));
+  CHECK(dst_hair_cheap_mean(diag, glm::vec3(INFINITY), {0, 1, 0}, colour, light, 1.0f) == glm::vec3(0.0f));
+  CHECK(dst_hair_cheap_mean(diag, off, glm::vec3(NAN), colour, light, 1.0f) == glm::vec3(0.0f));
+  CHECK(dst_hair_cheap_mean(diag, off, {0, 1, 0}, colour, light, NAN) == glm::vec3(0.0f));
+  CHECK(dst_hair_cheap_mean({0, 2, 0}, off, {0, 1, 0}, colour, light, 1.0f) == glm::vec3(0.0f));  // past 1: none, not NaN
+}
+
 TEST_CASE("Eq. 1's term: no occluder lets all light through, an opaque one none", "[kbuffer]") {
   CHECK(dst_hair_transmittance(0.3f, 8.0f, 0.0f) == 1.0f);
   CHECK(dst_hair_transmittance(0.3f, 8.0f, -1.0f) == 1.0f);

@@ -1419,11 +1419,16 @@ scene few_strands(bool with_hair) {
   return s;
 }
 
+// Where a pixel's fragment at window depth `depth` lies, as the passes find it.
+glm::vec3 world_at(const scene& s, const options& o, glm::ivec2 pixel, float depth) {
+  const render::frame_block f = render::camera_frame(s, o);
+  const glm::vec4 h = f.inv_view_proj * glm::vec4(shader::dst_pixel_ndc(pixel, {o.width, o.height}), depth, 1.0f);
+  return glm::vec3(h) / h.w;
+}
+
 // What kbuffer.glsl's dst_hair_lit gives a fragment without shadows, from the shared formulas.
 glm::vec3 hair_lit(const scene& s, const options& o, glm::ivec2 pixel, glm::uvec4 node) {
-  const render::frame_block f = render::camera_frame(s, o);
-  const glm::vec4 h = f.inv_view_proj * glm::vec4(shader::dst_pixel_ndc(pixel, {o.width, o.height}), glm::uintBitsToFloat(node.x), 1.0f);
-  const glm::vec3 world = glm::vec3(h) / h.w, v = glm::normalize(s.view.position - world);
+  const glm::vec3 world = world_at(s, o, pixel, glm::uintBitsToFloat(node.x)), v = glm::normalize(s.view.position - world);
   const glm::vec4 c = shader::dst_unpack_colour(node.z);
   glm::vec3 sum = s.ambient * glm::vec3(c);
   for (const render::light_block& l : render::light_blocks(s)) {
@@ -1474,6 +1479,75 @@ TEST_CASE("the resolve blends each pixel's fragments in the order a CPU sort giv
       }
     INFO("first wrong pixel: " << first);
     CHECK(ties > 100);  // the second head of hair lies on the first
+    CHECK(wrong == 0);
+  }
+}
+
+// What kbuffer.glsl's dst_hair_lit_mean gives a tail without shadows: the nodes' alpha-weighted inputs
+// gathered, the light at their mean depth.
+glm::vec4 hair_tail(const scene& s, const options& o, glm::ivec2 pixel, const std::vector<glm::uvec4>& tail) {
+  glm::vec3 colour(0.0f), diag(0.0f), off(0.0f);
+  float alphas = 0.0f, depth = 0.0f;
+  for (const glm::uvec4& node : tail) {
+    const glm::vec4 c = shader::dst_unpack_colour(node.z);
+    const glm::vec3 t = shader::dst_unpack_tangent(node.y);
+    alphas += c.w;
+    depth += c.w * glm::uintBitsToFloat(node.x);
+    colour += c.w * glm::vec3(c);
+    diag += c.w * t * t;
+    off += c.w * glm::vec3(t.x * t.y, t.x * t.z, t.y * t.z);
+  }
+  if (!(alphas > 0.0f)) return glm::vec4(0.0f);
+  const glm::vec3 world = world_at(s, o, pixel, depth / alphas);
+  glm::vec3 sum = s.ambient * colour;
+  for (const render::light_block& l : render::light_blocks(s)) {
+    const glm::vec4 reach = shader::dst_light_reach(int(l.direction_kind.w + 0.5f), glm::vec3(l.position_range), glm::vec3(l.direction_kind),
+                                                    l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, world);
+    sum += shader::dst_hair_cheap_mean(diag / alphas, off / alphas, glm::vec3(reach), colour, glm::vec3(l.colour_cos_outer) * reach.w, 1.0f);
+  }
+  return glm::vec4(sum, alphas);
+}
+
+TEST_CASE("the resolve shades each pixel's tail once from its fragments' gathered inputs, as the CPU does", "[render][kbuffer]") {
+  for (backend b : backends) {
+    options o = small(160, 90);
+    o.float_targets = true;
+    o.kbuffer_k = 2;
+    const scene s = few_strands(true);
+    auto with = draw(b, s, o);
+    auto without = draw(b, few_strands(false), o);
+    if (!with || !without) continue;
+    INFO(name(b));
+    REQUIRE(with->kbuffer_overflow == 0u);
+    std::size_t tails = 0, wrong = 0;
+    std::string first;
+    for (int y = 0; y < o.height; ++y)
+      for (int x = 0; x < o.width; ++x) {
+        const std::size_t i = std::size_t(y * o.width + x);
+        std::vector<glm::uvec4> list;
+        for (std::uint32_t at = with->kbuffer_heads[i]; at != 0xffffffffu; at = with->kbuffer_nodes[at].w)
+          list.push_back(with->kbuffer_nodes[at]);
+        std::sort(list.begin(), list.end(), [](glm::uvec4 a, glm::uvec4 c) {
+          return a.x != c.x ? a.x < c.x : a.y != c.y ? a.y < c.y : a.z < c.z;
+        });
+        const std::size_t core = std::min<std::size_t>(list.size(), 2);
+        const std::vector<glm::uvec4> tail(list.begin() + std::ptrdiff_t(core), list.end());
+        tails += !tail.empty();
+        float keeps = 1.0f;
+        for (const glm::uvec4& node : tail) keeps *= 1.0f - shader::dst_unpack_colour(node.z).w;
+        glm::vec3 colour = shader::dst_tail_over(glm::vec3(0.0f), hair_tail(s, o, {x, y}, tail), keeps);
+        for (std::size_t k = core; k-- > 0;) {
+          const float a = shader::dst_unpack_colour(list[k].z).w;
+          colour = shader::dst_over(colour, glm::vec4(hair_lit(s, o, {x, y}, list[k]), a));
+          keeps *= 1.0f - a;
+        }
+        const glm::vec3 expected = colour + glm::vec3(decode(format::rgba32f, without->final_texels[i])) * keeps;
+        const glm::vec3 got(decode(format::rgba32f, with->final_texels[i]));
+        if (glm::any(glm::greaterThan(glm::abs(got - expected), glm::vec3(2e-3f))) && !wrong++)
+          first = std::to_string(x) + "," + std::to_string(y);
+      }
+    INFO("first wrong pixel: " << first);
+    CHECK(tails > 100);
     CHECK(wrong == 0);
   }
 }

@@ -484,6 +484,13 @@ inline const std::vector<formula>& formulas() {
           .within({"colour", "visibility"}, {0.0f, 1.0f})
           .within("light", {0.0f, 4.0f})
           .yields(0.0f, INFINITY),
+      DSTRANS_FORMULA(dst_hair, dst_hair_cheap_mean)
+          .within("diag", {0.0f, 1.0f})
+          .within("off", {-0.5f, 0.5f})
+          .within("l", unit_vector())
+          .within({"colour", "visibility"}, {0.0f, 1.0f})
+          .within("light", {0.0f, 4.0f})
+          .yields(0.0f, INFINITY),
       DSTRANS_FORMULA(dst_hair, dst_hair_full)
           .within({"t", "l", "v"}, unit_vector())
           .within({"colour", "visibility"}, {0.0f, 1.0f})

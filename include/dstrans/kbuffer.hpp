@@ -6,14 +6,18 @@
 //   glm::vec3 full = dstrans::shader::dst_hair_full(t, l, v, colour, light, visibility);    // Eq. 2
 //   glm::vec3 cheap = dstrans::shader::dst_hair_cheap(t, l, colour, light, visibility);     // R_d only
 //   glm::vec4 tail = dstrans::shader::dst_tail_add(tail, glm::vec4(cheap, alpha));          // any order
-//   glm::vec3 behind = dstrans::shader::dst_tail_over(background, tail);                   // then the core
+//   glm::vec3 all = dstrans::shader::dst_hair_cheap_mean(diag, off, l, sum, light, visibility);  // or at once
+//   glm::vec3 behind = dstrans::shader::dst_tail_over(background, tail, transmittance);    // then the core
 //
 // Choices, each tested:
 // - a node is 16 bytes: depth (float bits), the tangent octahedrally encoded in two 16-bit snorms, colour
 //   and alpha in RGBA8, the next node's index (0xffffffff ends a list);
 // - Eq. 2 uses Kajiya-Kay: diffuse sin(T, L), and two specular lobes (R and TRT) along tangents shifted
 //   towards the viewer-facing normal of the strand (shift -0.1 and +0.1, exponents 80 and 20, TRT tinted by
-//   the hair's colour) with the half-vector form of Scheuermann (2004); the cheap shader is the diffuse term;
+//   the hair's colour) with the half-vector form of Scheuermann (2004); the cheap shader is the diffuse term,
+//   and the resolve runs it once for a pixel's whole tail (dst_hair_cheap_mean): the tail's fragments lie
+//   behind the k nearest, so the light, its one shadow tap and its direction are taken at their mean depth,
+//   and their sines from the alpha-weighted mean of T T^T: per fragment the tail only adds up its inputs;
 // - Eq. 1 is read as visibility: V = sum_i w_i (1 - alpha)^(k d_i), d_i the distance behind the first
 //   occluder at tap i in shadow-map depth units, so R = V (R_d + R_R + R_TRT) and the paper's S_n is
 //   1 - V. Taps are Gaussian (sigma 1 texel) on a 5x5 grid for the core, the centre tap for the tail;
@@ -79,6 +83,19 @@ DST_FN vec3 dst_hair_full(vec3 t, vec3 l, vec3 v, vec3 colour, vec3 light, float
   vec3 t2 = normalize(t + n * 0.1f);
   vec3 specular = light * (0.3f * dst_strand_specular(t1, h, 80.0f)) + colour * light * (0.4f * dst_strand_specular(t2, h, 20.0f));
   return dst_hair_cheap(t, l, colour, light, visibility) + specular * visibility;
+}
+// The tail's cheap shader for all its fragments at once: colour (their sum of colour times alpha) lit by
+// `light` and `visibility` with sqrt(1 - l^T M l) for their mean sin(T, L), M being their alpha-weighted
+// mean of T T^T (its diagonal in `diag`, its xy, xz and yz in `off`). One fragment's M gives dst_hair_cheap
+// exactly; for several, the root of their mean sin^2 is at least their mean sine (Jensen), and equal when
+// their sines are.
+DST_FN vec3 dst_hair_cheap_mean(vec3 diag, vec3 off, vec3 l, vec3 colour, vec3 light, float visibility) {
+  if (!dst_finite3(diag) || !dst_finite3(off) || !dst_finite3(l) || !dst_finite3(colour) || !dst_finite3(light) ||
+      isnan(visibility) || isinf(visibility))
+    return vec3(0.0f);
+  float q = 1.0f - (l.x * l.x * diag.x + l.y * l.y * diag.y + l.z * l.z * diag.z +
+                    2.0f * (l.x * l.y * off.x + l.x * l.z * off.y + l.y * l.z * off.z));
+  return colour * light * ((q > 0.0f ? (q < 1.0f ? sqrt(q) : 1.0f) : 0.0f) * visibility);
 }
 DST_FN float dst_shadow_tap_weight(float dx, float dy) { return exp(-0.5f * (dx * dx + dy * dy)); }
 DST_FN float dst_hair_transmittance(float alpha, float density, float behind) {

@@ -48,3 +48,21 @@ vec3 dst_hair_lit(vec3 world, vec3 tangent, vec4 colour_alpha, bool full) {
   }
   return sum;
 }
+
+// The light a tail gives its fragments at once (dst_hair_cheap_mean): `colour` is their sum of colour
+// times alpha, `world` where they lie on average, `diag` and `off` their mean T T^T, `alpha` their mean
+// alpha (for Eq. 1's one tap).
+vec3 dst_hair_lit_mean(vec3 world, vec3 diag, vec3 off, vec3 colour, float alpha) {
+  vec3 sum = frame.ambient.xyz * colour;
+  for (int i = 0; i < frame.counts.x; ++i) {
+    dst_light_data l = lights[i];
+    vec4 reach = dst_light_reach(int(l.direction_kind.w + 0.5f), l.position_range.xyz, l.direction_kind.xyz,
+                                 l.position_range.w, l.colour_cos_outer.w, l.cos_inner.x, world);
+    float visibility = 1.0f;
+#ifdef DST_SHADOWS
+    if (float(i) == frame.params.z) visibility = dst_hair_visibility(world, l, alpha, 0);
+#endif
+    sum += dst_hair_cheap_mean(diag, off, vec3(reach), colour, l.colour_cos_outer.xyz * reach.w, visibility);
+  }
+  return sum;
+}

@@ -1,8 +1,9 @@
 // The resolve pass (S1): the k nearest fragments of the pixel's list stay in registers (the core), sorted
 // by depth (ties by their packed tangent and colour, so equal fragments resolve the same way every time);
 // the rest are blended out of order (the tail) with the capture pass's overflow. The core is shaded fully
-// (Eq. 2) unless DST_LAYERS_CHEAP; the tail cheaply, not at all with DST_LAYERS_TAILLESS (its opacity
-// still counts), or fully with DST_LAYERS_FORWARD (the reference, whose core holds every fragment anyway).
+// (Eq. 2) unless DST_LAYERS_CHEAP; the tail cheaply and once for all its fragments from their gathered
+// inputs (DST_LAYERS_GATHERED), not at all with DST_LAYERS_TAILLESS (its opacity still counts), or each
+// fragment fully with DST_LAYERS_FORWARD (the reference, whose core holds every fragment anyway).
 // Written premultiplied over the frame: colour + frame * alpha (alpha = what the frame keeps); around the
 // glass (DST_AROUND_GLASS) into the glass layers, what lies behind the glass apart from what lies in front.
 layout(location = 0) out vec4 colour;
@@ -26,6 +27,11 @@ void main() {
   for (int i = 0; i < DST_K; ++i) core[i] = uvec4(dst_no_node);  // Mesa warns of reads it cannot prove written
   int n = 0;
   uint at = head;
+  // The cheap tail's inputs, gathered to be shaded once (dst_hair_lit_mean): alpha and count, then the sums
+  // of depth, colour and T T^T (its diagonal and its xy, xz, yz), each weighted by alpha.
+  vec2 gathered = vec2(0.0f);
+  float gathered_depth = 0.0f;
+  vec3 gathered_colour = vec3(0.0f), diag = vec3(0.0f), off = vec3(0.0f);
   for (uint steps = 0u; at != dst_no_node && steps < kbuffer.capacity; ++steps) {
     uvec4 node = kbuffer.nodes[at];
     at = node.w;
@@ -47,21 +53,29 @@ void main() {
     }
     if (to_tail) {
       vec4 c = dst_unpack_colour(out_node.z);
-#ifdef DST_LAYERS_TAILLESS
-      vec3 shaded = vec3(0.0f);
-#endif
-#ifdef DST_LAYERS_FORWARD
-      vec3 shaded = dst_shade_node(p, out_node, true);
-#endif
-#ifndef DST_LAYERS_TAILLESS
-#ifndef DST_LAYERS_FORWARD
-      vec3 shaded = dst_shade_node(p, out_node, false);
-#endif
-#endif
-      tail = dst_tail_add(tail, vec4(shaded, c.w));
       transmittance *= 1.0f - c.w;
+#ifdef DST_LAYERS_FORWARD
+      tail = dst_tail_add(tail, vec4(dst_shade_node(p, out_node, true), c.w));
+#endif
+#ifdef DST_LAYERS_TAILLESS
+      tail.w += c.w;
+#endif
+#ifdef DST_LAYERS_GATHERED
+      vec3 t = dst_unpack_tangent(out_node.y);
+      gathered += vec2(c.w, 1.0f);
+      gathered_depth += c.w * uintBitsToFloat(out_node.x);
+      gathered_colour += c.w * c.xyz;
+      diag += c.w * t * t;
+      off += c.w * vec3(t.x * t.y, t.x * t.z, t.y * t.z);
+#endif
     }
   }
+#ifdef DST_LAYERS_GATHERED
+  if (gathered.x > 0.0f) {
+    vec3 world = dst_world_position(p, gathered_depth / gathered.x);
+    tail += vec4(dst_hair_lit_mean(world, diag / gathered.x, off / gathered.x, gathered_colour, gathered.x / gathered.y), gathered.x);
+  }
+#endif
   // Around the glass (DST_AROUND_GLASS), the core splits at the glass's depth, and the tail goes with the
   // core's farthest fragment (every list fragment in it lies farther still); elsewhere all lies behind.
   float glass = dst_glass_and_opaque(p).x;

@@ -438,6 +438,8 @@ inline result<pass_sources> resolve_pass(const pass_shaders& shaders, shadow_mod
   if (o.kbuffer_variant == options::layers::tailless) switches.push_back("DST_LAYERS_TAILLESS");
   if (o.kbuffer_variant == options::layers::cheap) switches.push_back("DST_LAYERS_CHEAP");
   if (o.kbuffer_variant == options::layers::forward) switches.push_back("DST_LAYERS_FORWARD");
+  if (o.kbuffer_variant == options::layers::deferred || o.kbuffer_variant == options::layers::cheap)
+    switches.push_back("DST_LAYERS_GATHERED");
   if (auto ok = pass_detail::finish(p.fragment, shaders, {"around_glass.glsl", "lists.glsl", "kbuffer.glsl", "resolve.frag.glsl"}, switches); !ok)
     return failure{ok.error()};
   return p;
