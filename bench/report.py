@@ -588,7 +588,8 @@ def bound(r):
 
     The compared passes are each side's timers (every timer where none are named). For a speed-up (B/A at
     least x): B's passes as measured over A's, each pass of A that B does not run alike at the time of a copy
-    of its bytes. For a cost (B/A at most x): A's passes as measured plus, for every pass, the copy time of the
+    of its bytes, or the upper end of the interval of the technique's floor, timed in pairs beside it, where
+    that is lower. For a cost (B/A at most x): A's passes as measured plus, for every pass, the copy time of the
     bytes B moves beyond A's, which B cannot do without."""
     if r["target"] is None:
         return None
@@ -600,7 +601,9 @@ def bound(r):
         return None
     if "at_least" in r["target"]:
         best = sum(r["a_pass_ms"][t] if t in r["alike"] else r["a_limit_ms"][t] for t in a_timers)
-        return b_ms / best if best > 0 else None
+        if best <= 0:
+            return None
+        return min(b_ms / best, r["floor"]["high"]) if "floor" in r else b_ms / best
     extra = sum(max(0.0, r["b_limit_ms"][t] - r["a_limit_ms"].get(t, 0.0)) for t in b_timers)
     return (a_ms + extra) / a_ms
 
@@ -641,7 +644,9 @@ def write_paired(w, rows):
       "target is missed and lies beyond the bound." % 2000)
     w("")
     w("The k-buffer (hair.json, S1) is timed on the passes S1 compares, capture and resolve, its capture alike "
-      "(one program for every list variant); the light volumes (smoke.json, S2) on what the particles add to a "
+      "(one program for every list variant), and bounded by its floor: S1's tailless variant, which shades no "
+      "tail at all, timed in pairs against the same reference (the upper end of its interval, shown beside); "
+      "the light volumes (smoke.json, S2) on what the particles add to a "
       "frame, each frame less a frame of the same settings without particles (the bake's own timer misses the "
       "compute work llvmpipe runs under the draw before it), no pass alike. Their target holds only at the "
       "RMSE beside it (hair: on hair pixels against the forward reference; smoke: on all pixels, the light "
@@ -671,6 +676,12 @@ def write_paired(w, rows):
             "-" if r.get("rmse") is None else "%.2f" % r["rmse"], "-" if share is None else "%.0f%%" % (100.0 * share),
             target, "-" if limit is None else "%.3f" % limit, verdict))
     w("")
+    for r in rows:
+        if "floor" in r:
+            f = r["floor"]
+            w("Floor of \"%s\": the same pair with A as %s, %.3f [%.3f, %.3f]." % (
+                r["technique"], f["technique"], f["ratio"], f["low"], f["high"]))
+            w("")
 
 
 def write_shadow_kinds(w, paired, soft):

@@ -817,7 +817,8 @@ result<json> paired_records(const scene& room, const render::options& base, cons
 }
 
 // S1's and S2's targets, timed in pairs on what the sources compare (scenes "hair_paired" and
-// "smoke_paired"): the k-buffer's capture and resolve at k = 8 against shading every fragment at capture,
+// "smoke_paired"): the k-buffer's capture and resolve at k = 8 against shading every fragment at capture
+// (with, as "floor", the same for S1's tailless variant),
 // and what lighting the particles from a light volume adds to a frame against lighting every particle
 // fragment (each side's frame less its frame without particles: llvmpipe runs a dispatch under the
 // timestamps of the draw before it, so the bake's own timer misses most of the bake), at the setting of
@@ -847,6 +848,16 @@ result<json> technique_pairs(const scene& hair, const scene& smoke, const json& 
                                  {{"at_least", 2.0}, {"rmse_at_most", 9.0}}, pairs, backend, clock, meter);
   if (!hair_pair) return failure{hair_pair.error()};
   (*hair_pair)["rmse"] = (*k8)["rmse_transparent"];
+  // The technique's floor at k = 8: S1's tailless, which shades no tail at all, against the same reference
+  // timed the same way. The capture both share and the core's full shading bound the ratio there.
+  render::options tailless = kbuffer;
+  tailless.kbuffer_variant = L::tailless;
+  auto floor = paired_record("forward / k-buffer tailless", zoomed(hair, 1.0f), "hair_paired",
+                             {tailless, {{"technique", "layers-tailless"}, {"k", 8}}, capture},
+                             {every, {{"technique", "layers-forward"}}, capture}, std::vector<std::string>{"capture"}, nullptr, pairs,
+                             backend, clock, meter);
+  if (!floor) return failure{floor.error()};
+  (*hair_pair)["floor"] = {{"technique", "layers-tailless"}, {"ratio", (*floor)["ratio"]}, {"low", (*floor)["low"]}, {"high", (*floor)["high"]}};
   records.push_back(*hair_pair);
   // Fits (RMSE and bytes a cell) before not, then faster (fits) or more accurate; a run the frames' noise
   // left adding nothing is not timed, so never chosen.
