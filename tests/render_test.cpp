@@ -1426,6 +1426,14 @@ glm::vec3 world_at(const scene& s, const options& o, glm::ivec2 pixel, float dep
   return glm::vec3(h) / h.w;
 }
 
+// Pixel i's list of `f`, in the order the resolve's core keeps: by depth, ties by the fragment's words.
+std::vector<glm::uvec4> sorted_list(const frame& f, std::size_t i) {
+  std::vector<glm::uvec4> list;
+  for (std::uint32_t at = f.kbuffer_heads[i]; at != 0xffffffffu; at = f.kbuffer_nodes[at].w) list.push_back(f.kbuffer_nodes[at]);
+  std::sort(list.begin(), list.end(), [](glm::uvec4 a, glm::uvec4 c) { return a.x != c.x ? a.x < c.x : a.y != c.y ? a.y < c.y : a.z < c.z; });
+  return list;
+}
+
 // What kbuffer.glsl's dst_hair_lit gives a fragment without shadows, from the shared formulas.
 glm::vec3 hair_lit(const scene& s, const options& o, glm::ivec2 pixel, glm::uvec4 node) {
   const glm::vec3 world = world_at(s, o, pixel, glm::uintBitsToFloat(node.x)), v = glm::normalize(s.view.position - world);
@@ -1458,12 +1466,7 @@ TEST_CASE("the resolve blends each pixel's fragments in the order a CPU sort giv
     for (int y = 0; y < o.height; ++y)
       for (int x = 0; x < o.width; ++x) {
         const std::size_t i = std::size_t(y * o.width + x);
-        std::vector<glm::uvec4> list;
-        for (std::uint32_t at = with->kbuffer_heads[i]; at != 0xffffffffu; at = with->kbuffer_nodes[at].w)
-          list.push_back(with->kbuffer_nodes[at]);
-        std::sort(list.begin(), list.end(), [](glm::uvec4 a, glm::uvec4 c) {
-          return a.x != c.x ? a.x < c.x : a.y != c.y ? a.y < c.y : a.z < c.z;
-        });
+        const std::vector<glm::uvec4> list = sorted_list(*with, i);
         for (std::size_t k = 1; k < list.size(); ++k) ties += list[k].x == list[k - 1].x;
         glm::vec3 colour(0.0f);
         float keeps = 1.0f;
@@ -1524,13 +1527,8 @@ TEST_CASE("the resolve shades each pixel's tail once from its fragments' gathere
     for (int y = 0; y < o.height; ++y)
       for (int x = 0; x < o.width; ++x) {
         const std::size_t i = std::size_t(y * o.width + x);
-        std::vector<glm::uvec4> list;
-        for (std::uint32_t at = with->kbuffer_heads[i]; at != 0xffffffffu; at = with->kbuffer_nodes[at].w)
-          list.push_back(with->kbuffer_nodes[at]);
-        std::sort(list.begin(), list.end(), [](glm::uvec4 a, glm::uvec4 c) {
-          return a.x != c.x ? a.x < c.x : a.y != c.y ? a.y < c.y : a.z < c.z;
-        });
-        const std::size_t core = std::min<std::size_t>(list.size(), 2);
+        const std::vector<glm::uvec4> list = sorted_list(*with, i);
+        const std::size_t core = std::min(list.size(), std::size_t(o.kbuffer_k));
         const std::vector<glm::uvec4> tail(list.begin() + std::ptrdiff_t(core), list.end());
         tails += !tail.empty();
         float keeps = 1.0f;
