@@ -588,8 +588,8 @@ def bound(r):
 
     The compared passes are each side's timers (every timer where none are named). For a speed-up (B/A at
     least x): B's passes as measured over A's, each pass of A that B does not run alike at the time of a copy
-    of its bytes, or the upper end of the interval of the technique's floor, timed in pairs beside it, where
-    that is lower. For a cost (B/A at most x): A's passes as measured plus, for every pass, the copy time of the
+    of its bytes, or the upper end of the interval of the technique's floor, timed in pairs beside it (or of
+    the pair's own, where that is higher), where that is lower. For a cost (B/A at most x): A's passes as measured plus, for every pass, the copy time of the
     bytes B moves beyond A's, which B cannot do without."""
     if r["target"] is None:
         return None
@@ -603,7 +603,11 @@ def bound(r):
         best = sum(r["a_pass_ms"][t] if t in r["alike"] else r["a_limit_ms"][t] for t in a_timers)
         if best <= 0:
             return None
-        return min(b_ms / best, r["floor"]["high"]) if "floor" in r else b_ms / best
+        if "floor" not in r:
+            return b_ms / best
+        # A floor below what the pair itself reached is noise (few pairs, a small frame): then the pair's
+        # own upper end is the most the measurement shows.
+        return min(b_ms / best, max(r["floor"]["high"], r["high"]))
     extra = sum(max(0.0, r["b_limit_ms"][t] - r["a_limit_ms"].get(t, 0.0)) for t in b_timers)
     return (a_ms + extra) / a_ms
 
@@ -645,7 +649,8 @@ def write_paired(w, rows):
     w("")
     w("The k-buffer (hair.json, S1) is timed on the passes S1 compares, capture and resolve, its capture alike "
       "(one program for every list variant), and bounded by its floor: S1's tailless variant, which shades no "
-      "tail at all, timed in pairs against the same reference (the upper end of its interval, shown beside); "
+      "tail at all, timed in pairs against the same reference (the upper end of its interval, shown below the table, or of "
+      "the pair's own where that is higher); "
       "the light volumes (smoke.json, S2) on what the particles add to a "
       "frame, each frame less a frame of the same settings without particles (the bake's own timer misses the "
       "compute work llvmpipe runs under the draw before it), no pass alike. Their target holds only at the "
