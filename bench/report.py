@@ -589,8 +589,8 @@ def bound(r):
     The compared passes are each side's timers (every timer where none are named). For a speed-up (B/A at
     least x): B's passes as measured over A's, each pass of A that B does not run alike at the time of a copy
     of its bytes, or the upper end of the interval of the technique's floor, timed in pairs beside it (or of
-    the pair's own, where that is higher), where that is lower. For a cost (B/A at most x): A's passes as measured plus, for every pass, the copy time of the
-    bytes B moves beyond A's, which B cannot do without."""
+    the pair's own, where that is higher), where that is lower. For a cost (B/A at most x): A's passes as
+    measured plus, for every pass, the copy time of the bytes B moves beyond A's, which B cannot do without."""
     if r["target"] is None:
         return None
     a_timers = r["timers"]["a"] or list(r["a_pass_ms"])

@@ -1448,6 +1448,26 @@ glm::vec3 hair_lit(const scene& s, const options& o, glm::ivec2 pixel, glm::uvec
   return sum;
 }
 
+// `colour` with list[0, count) of a pixel's fragments, lit by hair_lit, blended over it back to front;
+// `keeps` is multiplied by what each lets through.
+glm::vec3 blend_lit(const scene& s, const options& o, glm::ivec2 pixel, const std::vector<glm::uvec4>& list, std::size_t count,
+                    glm::vec3 colour, float& keeps) {
+  for (std::size_t k = count; k-- > 0;) {
+    const float a = shader::dst_unpack_colour(list[k].z).w;
+    colour = shader::dst_over(colour, glm::vec4(hair_lit(s, o, pixel, list[k]), a));
+    keeps *= 1.0f - a;
+  }
+  return colour;
+}
+
+// Whether pixel i of `with` is `colour` over pixel i of `without` (the frame without hair) seen through
+// `keeps`, within 2e-3.
+bool over_background(const frame& with, const frame& without, std::size_t i, glm::vec3 colour, float keeps) {
+  const glm::vec3 expected = colour + glm::vec3(decode(format::rgba32f, without.final_texels[i])) * keeps;
+  const glm::vec3 got(decode(format::rgba32f, with.final_texels[i]));
+  return !glm::any(glm::greaterThan(glm::abs(got - expected), glm::vec3(2e-3f)));
+}
+
 TEST_CASE("the resolve blends each pixel's fragments in the order a CPU sort gives, ties included", "[render][kbuffer]") {
   for (backend b : backends) {
     options o = small(160, 90);
@@ -1468,16 +1488,9 @@ TEST_CASE("the resolve blends each pixel's fragments in the order a CPU sort giv
         const std::size_t i = std::size_t(y * o.width + x);
         const std::vector<glm::uvec4> list = sorted_list(*with, i);
         for (std::size_t k = 1; k < list.size(); ++k) ties += list[k].x == list[k - 1].x;
-        glm::vec3 colour(0.0f);
         float keeps = 1.0f;
-        for (std::size_t k = list.size(); k-- > 0;) {
-          const float a = shader::dst_unpack_colour(list[k].z).w;
-          colour = shader::dst_over(colour, glm::vec4(hair_lit(few_strands(true), o, {x, y}, list[k]), a));
-          keeps *= 1.0f - a;
-        }
-        const glm::vec3 expected = colour + glm::vec3(decode(format::rgba32f, without->final_texels[i])) * keeps;
-        const glm::vec3 got(decode(format::rgba32f, with->final_texels[i]));
-        if (glm::any(glm::greaterThan(glm::abs(got - expected), glm::vec3(2e-3f))) && !wrong++)
+        const glm::vec3 colour = blend_lit(few_strands(true), o, {x, y}, list, list.size(), glm::vec3(0.0f), keeps);
+        if (!over_background(*with, *without, i, colour, keeps) && !wrong++)
           first = std::to_string(x) + "," + std::to_string(y);
       }
     INFO("first wrong pixel: " << first);
@@ -1533,15 +1546,9 @@ TEST_CASE("the resolve shades each pixel's tail once from its fragments' gathere
         tails += !tail.empty();
         float keeps = 1.0f;
         for (const glm::uvec4& node : tail) keeps *= 1.0f - shader::dst_unpack_colour(node.z).w;
-        glm::vec3 colour = shader::dst_tail_over(glm::vec3(0.0f), hair_tail(s, o, {x, y}, tail), keeps);
-        for (std::size_t k = core; k-- > 0;) {
-          const float a = shader::dst_unpack_colour(list[k].z).w;
-          colour = shader::dst_over(colour, glm::vec4(hair_lit(s, o, {x, y}, list[k]), a));
-          keeps *= 1.0f - a;
-        }
-        const glm::vec3 expected = colour + glm::vec3(decode(format::rgba32f, without->final_texels[i])) * keeps;
-        const glm::vec3 got(decode(format::rgba32f, with->final_texels[i]));
-        if (glm::any(glm::greaterThan(glm::abs(got - expected), glm::vec3(2e-3f))) && !wrong++)
+        const glm::vec3 behind = shader::dst_tail_over(glm::vec3(0.0f), hair_tail(s, o, {x, y}, tail), keeps);
+        const glm::vec3 colour = blend_lit(s, o, {x, y}, list, core, behind, keeps);
+        if (!over_background(*with, *without, i, colour, keeps) && !wrong++)
           first = std::to_string(x) + "," + std::to_string(y);
       }
     INFO("first wrong pixel: " << first);
