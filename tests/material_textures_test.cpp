@@ -81,6 +81,14 @@ TEST_CASE("a material's block says its layer, cutoff, whether texels set its alp
   CHECK(render::material_blocks(s)[0].texture.y == 0.0f);
 }
 
+TEST_CASE("a scene's materials fit a device's texel buffers at three texels each, or are refused saying so", "[textures]") {
+  scene s;
+  s.materials.resize(5);
+  CHECK(render::materials_fit(s, 15));
+  CHECK(render::materials_fit(s, 14).error() == "5 materials need 15 texels of a texel buffer; this device's largest holds 14");
+  CHECK(render::materials_fit(scene{}, 0));
+}
+
 TEST_CASE("the texture array: one size for every layer, exact where a texture has it, averaged where shrunk", "[textures]") {
   scene s;
   s.textures = {testing::chequer(4, 2, {255, 0, 0, 255}, {0, 0, 255, 0}),   // 8 x 8

@@ -281,7 +281,8 @@ std::vector<std::pair<std::string, GLint64>> gl_state() {
   glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
   for (GLuint i = 0; i < GLuint(std::min(units, 64)); ++i) {
     glActiveTexture(GL_TEXTURE0 + i);
-    for (GLenum target : {GL_TEXTURE_BINDING_2D, GL_TEXTURE_BINDING_3D, GL_TEXTURE_BINDING_2D_ARRAY, GL_SAMPLER_BINDING}) {
+    for (GLenum target : {GL_TEXTURE_BINDING_2D, GL_TEXTURE_BINDING_3D, GL_TEXTURE_BINDING_2D_ARRAY, GL_TEXTURE_BINDING_BUFFER,
+                          GL_SAMPLER_BINDING}) {
       GLint64 v = 0;
       glGetInteger64v(target, &v);
       out.push_back({"unit " + std::to_string(i) + " " + std::to_string(target), v});
@@ -308,7 +309,7 @@ std::vector<std::pair<std::string, GLint64>> gl_state() {
 // An engine's state that differs from GL's defaults everywhere gl_state() looks, with its own objects in
 // every texture unit, block binding and image unit.
 struct engine_gl_state {
-  GLuint textures[3] = {}, image = 0, buffer = 0, vertex_array = 0, framebuffer = 0;
+  GLuint textures[4] = {}, image = 0, buffer = 0, vertex_array = 0, framebuffer = 0;
   engine_gl_state() {
     glCreateTextures(GL_TEXTURE_2D, 1, &textures[0]);
     glTextureStorage2D(textures[0], 1, GL_RGBA8, 4, 4);
@@ -320,6 +321,8 @@ struct engine_gl_state {
     glTextureStorage2D(image, 1, GL_R32UI, 4, 4);
     glCreateBuffers(1, &buffer);
     glNamedBufferStorage(buffer, 4096, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &textures[3]);
+    glTextureBuffer(textures[3], GL_RGBA32F, buffer);
     glCreateVertexArrays(1, &vertex_array);
     glCreateFramebuffers(1, &framebuffer);
     glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, textures[0], 0);
@@ -335,6 +338,7 @@ struct engine_gl_state {
       glBindTexture(GL_TEXTURE_2D, textures[0]);
       if (i % 2) glBindTexture(GL_TEXTURE_3D, textures[1]);
       if (i % 3) glBindTexture(GL_TEXTURE_2D_ARRAY, textures[2]);
+      if (i % 5) glBindTexture(GL_TEXTURE_BUFFER, textures[3]);
     }
     glActiveTexture(GL_TEXTURE5);
     for (GLuint i = 0; i < GLuint(std::min(uniform_blocks, 64)); ++i)
@@ -370,8 +374,8 @@ struct engine_gl_state {
     glBindVertexArray(0);
     glDeleteFramebuffers(1, &framebuffer);
     glDeleteVertexArrays(1, &vertex_array);
+    glDeleteTextures(4, textures);
     glDeleteBuffers(1, &buffer);
-    glDeleteTextures(3, textures);
     glDeleteTextures(1, &image);
   }
 };

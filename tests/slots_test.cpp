@@ -77,7 +77,7 @@ TEST_CASE("frame.glsl declares the shared blocks at their slots", "[slots]") {
   CHECK(src.has(text::dst_material_data));
   CHECK(src.has(text::dst_light_data));
   src.add("layout(location = 0) out vec4 o;\n"
-          "void main() { o = frame.ambient + materials[0].diffuse_alpha + lights[0].colour_cos_outer; }\n",
+          "void main() { o = frame.ambient + dst_material(1u).specular + lights[0].colour_cos_outer; }\n",
           __FILE__, __LINE__);
   const auto words = spirv::compile(src, spirv::stage::fragment, spirv::api::vulkan);
   INFO(words.error());
@@ -86,7 +86,9 @@ TEST_CASE("frame.glsl declares the shared blocks at their slots", "[slots]") {
   REQUIRE(refl);
   REQUIRE(refl->uniform_buffers.size() == 1);
   CHECK(refl->uniform_buffers[0].binding == binding(slot::frame));
-  REQUIRE(refl->storage_buffers.size() == 2);
-  CHECK(refl->storage_buffers[0].binding == binding(slot::materials));
-  CHECK(refl->storage_buffers[1].binding == binding(slot::lights));
+  REQUIRE(refl->texel_buffers.size() == 1);
+  CHECK(refl->texel_buffers[0].binding == binding(slot::materials));
+  CHECK(refl->samplers.empty());
+  REQUIRE(refl->storage_buffers.size() == 1);
+  CHECK(refl->storage_buffers[0].binding == binding(slot::lights));
 }

@@ -288,12 +288,14 @@ state_guard::state_guard(const std::vector<GLuint>& storage_blocks) {
   };
   for (const slot_desc& d : slot_table)
     for (GLuint i = GLuint(d.binding); i < GLuint(d.binding + d.count); ++i) switch (d.kind) {
-        case slot_kind::texture: {
-          texture_unit u{i, 0, 0, 0};
+        case slot_kind::texture:
+        case slot_kind::texel_buffer: {
+          texture_unit u{i, 0, 0, 0, 0};
           glActiveTexture(GL_TEXTURE0 + i);
           glGetIntegerv(GL_TEXTURE_BINDING_2D, &u.texture_2d);
           glGetIntegerv(GL_TEXTURE_BINDING_3D, &u.texture_3d);
           glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &u.texture_2d_array);
+          glGetIntegerv(GL_TEXTURE_BINDING_BUFFER, &u.texture_buffer);
           textures_.push_back(u);
           break;
         }
@@ -350,6 +352,7 @@ state_guard::~state_guard() {
     glBindTexture(GL_TEXTURE_2D, GLuint(u.texture_2d));
     glBindTexture(GL_TEXTURE_3D, GLuint(u.texture_3d));
     glBindTexture(GL_TEXTURE_2D_ARRAY, GLuint(u.texture_2d_array));
+    glBindTexture(GL_TEXTURE_BUFFER, GLuint(u.texture_buffer));
   }
   glActiveTexture(GLenum(active_texture_));
   for (const image_unit& u : images_)

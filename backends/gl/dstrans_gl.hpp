@@ -116,11 +116,12 @@ class debug_group {
 // Saves the GL state dstrans's passes change and restores it when destroyed, so dstrans can run inside
 // an engine's frame: program, framebuffers, viewport, clip control, depth (test, write mask, function,
 // clamp), blend (enable, functions, equations), cull (enable, face, winding), scissor test, vertex array,
-// the generic value of vertex attribute 3 (as unsigned integers: the frame's light index), pixel pack and unpack alignment and buffers, the active texture unit, and every binding of the slot
-// table (dstrans/frame/slots.hpp): the 2D, 3D and 2D-array textures of each texture slot's units, each
-// image slot's image unit, each block slot's buffer range, and the generic uniform and storage buffer
-// bindings that binding a block changes. `storage_blocks` names further storage-buffer bindings the
-// guarded work uses (the formula runner's two).
+// the generic value of vertex attribute 3 (as unsigned integers: the frame's light index), pixel pack and
+// unpack alignment and buffers, the active texture unit, and every binding of the slot table
+// (dstrans/frame/slots.hpp): the 2D, 3D, 2D-array and buffer textures of each texture and texel-buffer
+// slot's units, each image slot's image unit, each block slot's buffer range, and the generic uniform and
+// storage buffer bindings that binding a block changes. `storage_blocks` names further storage-buffer
+// bindings the guarded work uses (the formula runner's two).
 class state_guard {
  public:
   explicit state_guard(const std::vector<GLuint>& storage_blocks = {});
@@ -131,7 +132,7 @@ class state_guard {
  private:
   struct texture_unit {
     GLuint unit;
-    GLint texture_2d, texture_3d, texture_2d_array;
+    GLint texture_2d, texture_3d, texture_2d_array, texture_buffer;
   };
   struct image_unit {
     GLuint unit;

@@ -83,6 +83,7 @@ struct renderer::impl {
          shadow_prog = 0, capture_prog = 0, resolve_prog = 0, bake_prog = 0, bake_shadowed_prog = 0, particle_prog = 0;
   std::vector<GLuint> post_progs, post_blocks;
   GLuint fullscreen_vao = 0, frame_ubo = 0, shadow_ubo = 0, materials = 0, lights = 0, material_textures = 0;
+  GLuint material_texels = 0;  // a buffer texture over `materials` (slot::materials)
   std::vector<std::vector<frame_block>> light_frames;  // each light's shadow-map views
   gl::targets shadow_map;
   int pictured_light = -1;  // the light whose shadow colour frame_targets::shadow_picture shows
@@ -222,7 +223,14 @@ result<bool> renderer::impl::make_fixed() {
 
   frame_ubo = make_buffer(std::vector<frame_block>{camera_frame(description, o)}, "camera frame");
   shadow_ubo = make_buffer(std::vector<frame_block>{camera_frame(description, o)}, "light frame");
+  GLint most_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most_texels);
+  if (auto ok = materials_fit(description, std::uint64_t(most_texels)); !ok) return ok;
   materials = make_buffer(material_blocks(description), "materials");
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &material_texels);
+  glTextureBuffer(material_texels, GL_RGBA32F, materials);
+  label(GL_TEXTURE, material_texels, "material texels");
+  textures.push_back(material_texels);
   if (plan.on.has(effect::textures)) {
     auto t = make_texture_array(texture_array_of(description), "material textures");
     if (!t) return failure{t.error()};
@@ -647,7 +655,7 @@ void renderer::render(const camera& view, const draw_geometry& draw) {
     r.particle_vertices = quads.size();
     if (!quads.empty()) glNamedBufferSubData(r.particle_quads, 0, GLsizeiptr(quads.size() * sizeof(particle_vertex)), quads.data());
   }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::materials), r.materials);
+  glBindTextureUnit(GLuint(binding(slot::materials)), r.material_texels);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::lights), r.lights);
   if (r.material_textures) glBindTextureUnit(GLuint(binding(slot::material_textures)), r.material_textures);
   if (r.smoke.on) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding(slot::particle_regions), r.particle_regions);

@@ -75,7 +75,12 @@ result<reflection> reflect(const std::vector<std::uint32_t>& words) {
     };
     variables(res.stage_inputs, out.inputs);
     variables(res.stage_outputs, out.outputs);
-    resources(res.sampled_images, out.samplers);
+    // A samplerBuffer is a sampled image of Dim Buffer, which Vulkan binds as a uniform texel buffer.
+    std::vector<spirv_cross::Resource> sampled, texels;
+    for (const auto& r : res.sampled_images)
+      (compiler.get_type(r.type_id).image.dim == spv::DimBuffer ? texels : sampled).push_back(r);
+    resources(sampled, out.samplers);
+    resources(texels, out.texel_buffers);
     resources(res.uniform_buffers, out.uniform_buffers);
     resources(res.storage_buffers, out.storage_buffers);
     resources(res.storage_images, out.storage_images);

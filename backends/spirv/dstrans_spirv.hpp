@@ -41,6 +41,7 @@ struct resource {
 struct reflection {
   std::vector<interface_variable> inputs, outputs;
   std::vector<resource> samplers, uniform_buffers, storage_buffers, storage_images;
+  std::vector<resource> texel_buffers;  // samplerBuffer: Vulkan's uniform texel buffers (not in samplers)
 };
 
 // The interface of SPIR-V module `words`; a failure if it cannot be parsed.

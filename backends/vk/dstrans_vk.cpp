@@ -56,7 +56,8 @@ result<VkDescriptorSetLayout> set_layout_from(const context& ctx, const std::vec
     if (!add(refl.samplers, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) ||
         !add(refl.uniform_buffers, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER) ||
         !add(refl.storage_buffers, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) ||
-        !add(refl.storage_images, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE))
+        !add(refl.storage_images, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) ||
+        !add(refl.texel_buffers, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER))
       return failure{clash >= 0 ? "binding " + std::to_string(clash) + " is declared as two kinds of resource"
                                 : std::string("dstrans pipelines bind everything in descriptor set 0")};
   }

@@ -45,9 +45,10 @@ struct program {
   pipeline pipe;
 };
 
-// What a descriptor set binds: buffers, and sampled or storage images, by binding number.
+// What a descriptor set binds: buffers, texel buffers, and sampled or storage images, by binding number.
 struct bindings {
   std::map<int, VkBuffer> buffers;
+  std::map<int, VkBufferView> texel_buffers;
   std::map<int, const image*> images;
   std::map<int, VkSampler> samplers;  // for sampled images not read with the nearest sampler
 };
@@ -168,6 +169,7 @@ struct renderer::impl {
 
   std::vector<buffer> owned;  // every buffer made once
   buffer light_index, sphere_vertices, sphere_indices, cone_vertices, cone_indices, materials, lights, regions, unshadowed, bake_regions;
+  VkBufferView material_texels = VK_NULL_HANDLE;  // `materials` as RGBA32F texels (slot::materials)
   std::size_t sphere_count = 0, cone_count = 0;
   std::vector<buffer> post_blocks, camera_blocks, quads;  // the last two: one a frame in flight
   std::vector<std::size_t> quad_counts;
@@ -258,6 +260,7 @@ renderer::impl::~impl() {
   destroy_sized();
   if (queries) vkDestroyQueryPool(d, queries, a);
   if (sampler) vkDestroySampler(d, sampler, a);
+  if (material_texels) vkDestroyBufferView(d, material_texels, a);
   if (linear_sampler) vkDestroySampler(d, linear_sampler, a);
   if (texture_sampler) vkDestroySampler(d, texture_sampler, a);
   dev.destroy(material_textures);
@@ -406,7 +409,11 @@ result<bool> renderer::impl::make_fixed() {
   made.emplace_back(&sphere_indices, filled(dev, sphere.indices, index_use, "point light volume"));
   made.emplace_back(&cone_vertices, filled(dev, cone.positions, vertex_use, "spot light volume"));
   made.emplace_back(&cone_indices, filled(dev, cone.indices, index_use, "spot light volume"));
-  made.emplace_back(&materials, filled(dev, material_blocks(description), storage_use, "materials"));
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(dev.ctx().physical_device, &props);
+  timestamp_ns = double(props.limits.timestampPeriod);
+  if (auto ok = materials_fit(description, props.limits.maxTexelBufferElements); !ok) return ok;
+  made.emplace_back(&materials, filled(dev, material_blocks(description), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, "materials"));
   if (zero_uv_binding >= 0) made.emplace_back(&zero_uv, filled(dev, std::vector<glm::vec2>{glm::vec2(0.0f)}, vertex_use, "zero texture coordinates"));
   made.emplace_back(&lights, filled(dev, light_data, storage_use, "lights"));
   camera_blocks.resize(std::size_t(slots));
@@ -430,6 +437,12 @@ result<bool> renderer::impl::make_fixed() {
     *into = *b;
     owned.push_back(*b);
   }
+  VkBufferViewCreateInfo texels{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  texels.buffer = materials.handle;
+  texels.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  texels.range = VK_WHOLE_SIZE;
+  if (vkCreateBufferView(dev.ctx().device, &texels, dev.ctx().allocator, &material_texels) != VK_SUCCESS)
+    return failure{"cannot create the materials' texel view"};
   if (plan.shadows != shadow_mode::off) {
     auto sm = dev.make_targets(shadow_targets(plan.shadows), o.shadow_size, o.shadow_size, "shadow map", true);
     if (!sm) return failure{sm.error()};
@@ -459,9 +472,6 @@ result<bool> renderer::impl::make_fixed() {
     material_textures = *t;
   }
   // Two timestamps a pass and two for the whole frame, a frame in flight each.
-  VkPhysicalDeviceProperties props;
-  vkGetPhysicalDeviceProperties(dev.ctx().physical_device, &props);
-  timestamp_ns = double(props.limits.timestampPeriod);
   queries_per_frame = std::uint32_t(2 * schedule.passes.size() + 2);
   VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -631,9 +641,8 @@ const program& renderer::impl::program_of(const scheduled_pass& pass) const {
 // this by what its shaders declare.
 bindings renderer::impl::bindings_of(const scheduled_pass& pass, int slot) const {
   bindings b;
-  b.buffers = {{binding(slot::frame), camera_blocks[std::size_t(slot)].handle},
-               {binding(slot::materials), materials.handle},
-               {binding(slot::lights), lights.handle}};
+  b.buffers = {{binding(slot::frame), camera_blocks[std::size_t(slot)].handle}, {binding(slot::lights), lights.handle}};
+  b.texel_buffers = {{binding(slot::materials), material_texels}};
   if (pass.step == pass_step::shadow)
     b.buffers[binding(slot::frame)] = light_blocks_by_light.at(pass.light).at(std::size_t(pass.index)).handle;
   if (material_textures.view) {
@@ -721,6 +730,10 @@ result<VkDescriptorSet> renderer::impl::make_set(const program& p, const binding
       add_use(used, {img.handle, aspect_of(img), layout, sampled ? reads : stored});
       image_infos.push_back({!sampled ? VK_NULL_HANDLE : own != b.samplers.end() ? own->second : sampler, img.view, layout});
       w.pImageInfo = &image_infos.back();
+    } else if (type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+      const auto it = b.texel_buffers.find(at);
+      if (it == b.texel_buffers.end()) return failure{"nothing bound to texel buffer binding " + std::to_string(at)};
+      w.pTexelBufferView = &it->second;
     } else {
       const auto it = b.buffers.find(at);
       if (it == b.buffers.end()) return failure{"nothing bound to buffer binding " + std::to_string(at)};
@@ -740,6 +753,8 @@ result<VkDescriptorSet> renderer::impl::make_set(const program& p, const binding
       if (auto ok = write(res.binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER); !ok) return failure{ok.error()};
     for (const auto& res : s->reflection.storage_images)
       if (auto ok = write(res.binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE); !ok) return failure{ok.error()};
+    for (const auto& res : s->reflection.texel_buffers)
+      if (auto ok = write(res.binding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER); !ok) return failure{ok.error()};
   }
   vkUpdateDescriptorSets(dev.ctx().device, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
   return set;
@@ -754,10 +769,11 @@ result<bool> renderer::impl::make_sets() {
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 4 * count},
                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * count},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16 * count},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * count}};
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * count},
+                                        {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, count}};
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pci.maxSets = count;
-  pci.poolSizeCount = 4;
+  pci.poolSizeCount = std::uint32_t(std::size(sizes));
   pci.pPoolSizes = sizes;
   if (vkCreateDescriptorPool(dev.ctx().device, &pci, dev.ctx().allocator, &pool) != VK_SUCCESS) return failure{"no descriptor pool"};
   if (plan.temporal) {

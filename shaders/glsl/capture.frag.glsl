@@ -8,7 +8,7 @@ layout(location = 0) out vec4 tail;           // premultiplied colour and alpha,
 layout(location = 1) out float optical_depth;  // -ln(1 - alpha), added: the tail's transmittance is exp(-x)
 
 void main() {
-  dst_material_data m = materials[surface_material];
+  dst_material_data m = dst_material(surface_material);
   float alpha = m.diffuse_alpha.w;
   ivec2 p = dst_pixel();
   if (alpha < 1.0f / 255.0f || gl_FragCoord.z >= dst_glass_and_opaque(p).y) discard;

@@ -31,7 +31,7 @@ vec3 dst_lit_surface(dst_surface s, vec3 world) {
 }
 
 void main() {
-  dst_material_data m = materials[surface_material];
+  dst_material_data m = dst_material(surface_material);
   ivec2 p = dst_pixel();
   vec3 world = dst_world_position(p, gl_FragCoord.z);
   vec4 shaded;

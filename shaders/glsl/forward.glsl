@@ -7,7 +7,7 @@ layout(location = 3) flat in uint light_id;
 
 // The material's surface at this fragment, or false where the interlace predicate drops it.
 bool dst_forward_surface(out dst_surface s) {
-  dst_material_data m = materials[surface_material];
+  dst_material_data m = dst_material(surface_material);
   s = dst_material_surface(m, world_normal);
   return !dst_transparent(s.alpha) || dst_interlace_keep(dst_pixel(), frame.size.xy);
 }

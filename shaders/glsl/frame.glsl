@@ -8,8 +8,18 @@
 #endif
 
 layout(std140, binding = DST_SLOT_FRAME) uniform dst_frame { dst_frame_data frame; };
-layout(std430, binding = DST_SLOT_MATERIALS) readonly buffer dst_materials { dst_material_data materials[]; };
+// The materials as a texel buffer, three RGBA32F texels each (dst_material_data's vec4s in order): llvmpipe
+// and lavapipe gather a texel fetch across the lanes, where they load a storage block lane by lane, and the
+// geometry passes read a material per fragment.
+layout(binding = DST_SLOT_MATERIALS) uniform samplerBuffer dst_materials;
 layout(std430, binding = DST_SLOT_LIGHTS) readonly buffer dst_lights { dst_light_data lights[]; };
+
+// Material `i`.
+dst_material_data dst_material(uint i) {
+  int t = 3 * int(i);
+  return dst_material_data(texelFetch(dst_materials, t), texelFetch(dst_materials, t + 1),
+                           texelFetch(dst_materials, t + 2));
+}
 
 // One light as flat varyings: what shading reads of it, all but its volume (8 locations). The deferred
 // light pass loads its light in the vertex shader, a few vertices a light, and hands it on: llvmpipe and

@@ -10,7 +10,7 @@ layout(binding = DST_SLOT_PEEL_DEPTH) uniform sampler2D dst_peel_depth;
 #endif
 
 void main() {
-  dst_surface s = dst_material_surface(materials[surface_material], world_normal);
+  dst_surface s = dst_material_surface(dst_material(surface_material), world_normal);
 #ifdef DST_PEEL
   if (dst_transparent(s.alpha) || gl_FragCoord.z <= texelFetch(dst_peel_depth, dst_pixel(), 0).x) discard;
 #endif

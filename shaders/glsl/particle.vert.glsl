@@ -31,7 +31,7 @@ void main() {
   dst_particle_region region = regions[system];
   world = position;
   particle_corner_alpha = corner_alpha.xyz;
-  particle_material = materials[uint(region.origin_material.w + 0.5f)].diffuse_alpha;
+  particle_material = dst_material(uint(region.origin_material.w + 0.5f)).diffuse_alpha;
 #ifndef DST_PARTICLES_FORWARD
   particle_range = region.offset_range.w;
   vec3 right = vec3(frame.view[0][0], frame.view[1][0], frame.view[2][0]);

@@ -4,7 +4,7 @@ layout(location = 0) in vec3 world_normal;
 layout(location = 1) flat in uint surface_material;
 
 void main() {
-  dst_material_data m = materials[surface_material];
+  dst_material_data m = dst_material(surface_material);
   dst_surface s = dst_material_surface(m, world_normal);
 #ifdef DST_MANY_LAYERS
   // Hair occludes what lies behind it fully here; hair itself reads its depth with Eq. 1 (resolve pass).

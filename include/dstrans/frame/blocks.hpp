@@ -1,6 +1,7 @@
 // The blocks every pass of the reference pipeline reads, written once for C++ and GLSL (DSTRANS_SHARED):
-// the frame (std140), each material and each light (std430). the pass shader frame.glsl declares them at
-// the slots of frame/slots.hpp; a pass that names one gets its definition with it.
+// the frame (std140), each material (three RGBA32F texels of a texel buffer) and each light (std430). The
+// pass shader frame.glsl declares them at the slots of frame/slots.hpp; a pass that names one gets its
+// definition with it.
 //
 //   dstrans::shader::dst_light_data light{};          // C++: fill it and upload it as it is
 //   light.position_range = glm::vec4(position, range);

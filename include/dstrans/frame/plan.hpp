@@ -156,6 +156,9 @@ bool rough_refraction(const options& o, effects on);
 // Whether the options' images (the frame and the shadow map) fit a device whose images and viewports are
 // at most `largest` texels a side: checked by both renderers before they allocate anything.
 result<bool> fits_device(const options& o, int largest);
+// Whether scene `s`'s materials fit a device whose buffer textures (GL) or texel buffers (Vulkan) hold at
+// most `most_texels` texels: frame.glsl's dst_material reads a material block as RGBA32F texels, three.
+result<bool> materials_fit(const scene& s, std::uint64_t most_texels);
 // The light whose shadow map the hair reads (Eq. 1): the last one drawn, as the maps share targets; -1: none.
 int hair_shadow_light(const frame_plan& p);
 // The names the command line, the benchmark and the viewer give techniques, shadows and k-buffer variants.
@@ -359,6 +362,14 @@ inline result<bool> fits_device(const options& o, int largest) {
     return failure{"a " + std::to_string(o.width) + "x" + std::to_string(o.height) + " frame with a " +
                    std::to_string(o.shadow_size) + "^2 shadow map needs images " + std::to_string(wanted) +
                    " texels a side; this device's largest is " + std::to_string(largest)};
+  return true;
+}
+
+inline result<bool> materials_fit(const scene& s, std::uint64_t most_texels) {
+  const std::uint64_t wanted = std::uint64_t(s.materials.size()) * (sizeof(material_block) / sizeof(glm::vec4));
+  if (wanted > most_texels)
+    return failure{std::to_string(s.materials.size()) + " materials need " + std::to_string(wanted) +
+                   " texels of a texel buffer; this device's largest holds " + std::to_string(most_texels)};
   return true;
 }
 

@@ -26,7 +26,7 @@ enum class slot {
   kbuffer_tail,      // the k-buffer's tail: its colour and optical depth
   forward_lit,       // forward rendering: the lit colour, the normal and (with depth) the depth
   frame,             // the frame block (frame/blocks.hpp)
-  materials,         // the materials
+  materials,         // the materials, three RGBA32F texels each (frame.glsl's dst_material)
   lights,            // the lights
   kbuffer_nodes,     // the k-buffer's node pool
   kbuffer_heads,     // the k-buffer's list heads
@@ -43,8 +43,9 @@ enum class slot {
 };
 
 // What a slot binds: sampled textures (a texture unit each on GL), a storage image, a uniform block, a
-// storage block.
-enum class slot_kind { texture, image, uniform_block, storage_block };
+// storage block, a buffer read as texels (GL: a buffer texture on a texture unit; Vulkan: a uniform texel
+// buffer).
+enum class slot_kind { texture, image, uniform_block, storage_block, texel_buffer };
 
 struct slot_desc {
   slot id;
@@ -64,7 +65,7 @@ inline constexpr slot_desc slot_table[] = {
     {slot::kbuffer_tail, "KBUFFER_TAIL", 15, 2, slot_kind::texture},
     {slot::forward_lit, "FORWARD_LIT", 17, 3, slot_kind::texture},
     {slot::frame, "FRAME", 20, 1, slot_kind::uniform_block},
-    {slot::materials, "MATERIALS", 21, 1, slot_kind::storage_block},
+    {slot::materials, "MATERIALS", 21, 1, slot_kind::texel_buffer},
     {slot::lights, "LIGHTS", 22, 1, slot_kind::storage_block},
     {slot::kbuffer_nodes, "KBUFFER_NODES", 23, 1, slot_kind::storage_block},
     {slot::kbuffer_heads, "KBUFFER_HEADS", 24, 1, slot_kind::image},
