@@ -33,6 +33,10 @@ TEST_PACKAGES := assimp-testmodels
 SUDO := $(if $(filter 0,$(shell id -u)),,sudo)
 
 CMAKE_FLAGS = $$(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+# ccache rewrites the paths under this clone to relative ones before it hashes a compile, so that a clone in
+# another folder (CI's, a second checkout) finds what this one compiled; -ffile-prefix-map (CMakeLists.txt)
+# keeps the objects themselves free of the folder.
+export CCACHE_BASEDIR := $(CURDIR)
 SANITIZE_ENV := ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
                 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers.supp:print_suppressions=0
 
