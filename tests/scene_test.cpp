@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <tuple>
 
@@ -113,6 +114,31 @@ TEST_CASE("flatten's parts tile the indices, hair last, each sphere holding its 
   CHECK(next == m.indices.size());
   CHECK(m.parts[2].first == m.hair_first);  // the hair, listed first, is drawn last
   CHECK(m.parts[1].radius == 0.0f);
+}
+
+TEST_CASE("a material is opaque unless transparent, alpha-tested or hair, and flatten's parts say which are", "[scene]") {
+  scene s;
+  s.materials.resize(5);
+  s.materials[1].alpha = 0.5f;         // glass
+  s.materials[2].alpha_cutoff = 0.5f;  // alpha-tested: some fragments dropped
+  s.materials[3].hair = true;
+  s.materials[4].texture = 0;          // a texture does not lower an opaque material's alpha
+  s.materials[4].alpha = std::numeric_limits<float>::quiet_NaN();  // NaN alpha is opaque, as dst_transparent has it
+  const bool want[] = {true, false, false, false, true};
+  for (std::size_t i = 0; i < s.materials.size(); ++i) {
+    INFO("material " << i);
+    CHECK(s.materials[i].opaque() == want[i]);
+    s.objects.push_back({shape_box({1, 1, 1}), glm::mat4(1.0f), std::uint32_t(i)});
+  }
+  s.objects.push_back({shape_box({1, 1, 1}), glm::mat4(1.0f), 9});  // no such material
+  const scene_mesh m = flatten(s);
+  REQUIRE(m.parts.size() == 6);
+  // In index order: materials 0, 1, 2, 4, the missing one, then the hair (3).
+  const bool parts_want[] = {true, false, false, true, false, false};
+  for (std::size_t i = 0; i < m.parts.size(); ++i) {
+    INFO("part " << i);
+    CHECK(m.parts[i].opaque == parts_want[i]);
+  }
 }
 
 TEST_CASE("a good scene file loads", "[scene]") {

@@ -27,6 +27,16 @@ scene example(const std::string& file) {
   return *s;
 }
 
+// A point light in glass_room's middle that casts shadows.
+light shadowed_point_light() {
+  light point;
+  point.kind = light_kind::point;
+  point.position = {0.3f, 1.7f, -0.2f};
+  point.range = 8.0f;
+  point.shadows = true;
+  return point;
+}
+
 }  // namespace
 
 TEST_CASE("check_schedule finds a read before its write and a write nothing reads", "[schedule]") {
@@ -224,11 +234,7 @@ TEST_CASE("a schedule states each pass's fixed-function state, clears and geomet
 // is the lookup's, and its texel lies in the pass's tile.
 TEST_CASE("a point light's shadow map is six faces drawn into the tiles of one map, where the lookups find them", "[schedule][shadow]") {
   scene s = example("glass_room.json");
-  light point;
-  point.kind = light_kind::point;
-  point.position = {0.3f, 1.7f, -0.2f};
-  point.range = 8.0f;
-  point.shadows = true;
+  const light point = shadowed_point_light();
   s.lights = {point};
   render::options o;
   o.shadow_size = 100;
@@ -289,6 +295,10 @@ TEST_CASE("drawn_indices picks a pass's run of a flattened scene, and times_of s
   CHECK(drawn_indices(geometry_set::everything, 30, 50).count == 50);
   CHECK(drawn_indices(geometry_set::none, 30, 50).count == 0);
   CHECK(drawn_indices(geometry_set::hair, 50, 50).count == 0);  // no hair
+  // Not knowing which objects are opaque: the depth-only pass draws nothing, the rest everything.
+  CHECK(drawn_indices(geometry_set::opaque, 30, 50).count == 0);
+  CHECK(drawn_indices(geometry_set::not_opaque, 30, 50).first == 0);
+  CHECK(drawn_indices(geometry_set::not_opaque, 30, 50).count == 50);
   frame_schedule s;
   s.passes = {scheduled_pass("shadow", "shadow pass, light 0", pass_kind::geometry, 0, {"scene"}, {"shadow map"}),
               scheduled_pass("light", "light pass, light 0", pass_kind::fullscreen, 0, {"shadow map"}, {"light buffer"}),
@@ -349,6 +359,74 @@ TEST_CASE("visible_runs draws a pass's run less the parts outside its clip volum
   CHECK(runs[0].count == 30);
   pass.draws = geometry_set::none;
   CHECK(visible_runs(parts, 24, 30, pass).empty());
+}
+
+TEST_CASE("visible_runs splits a pass's parts by mesh_part::opaque for the two passes of a transparent shadow map", "[schedule][culling]") {
+  const glm::mat4 m = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 1.0f, 10.0f);
+  const glm::vec3 in(0, 0, -5), out(20, 0, -5);
+  // Opaque, opaque, glass, opaque outside the view, glass, hair (from 30).
+  const std::vector<mesh_part> parts = {{0, 6, in, 1.0f, true},    {6, 6, in, 1.0f, true},  {12, 6, in, 1.0f, false},
+                                        {18, 6, out, 1.0f, true},  {24, 6, in, 1.0f, false}, {30, 6, in, 1.0f, false}};
+  scheduled_pass pass;
+  pass.view_proj = m;
+  pass.draws = geometry_set::opaque;
+  auto runs = visible_runs(parts, 30, 36, pass);
+  REQUIRE(runs.size() == 1);
+  CHECK((runs[0].first == 0 && runs[0].count == 12));
+  pass.draws = geometry_set::not_opaque;  // the glass and the hair
+  runs = visible_runs(parts, 30, 36, pass);
+  REQUIRE(runs.size() == 2);
+  CHECK((runs[0].first == 12 && runs[0].count == 6));
+  CHECK((runs[1].first == 24 && runs[1].count == 12));
+  // Without parts, drawn_indices' runs: nothing depth only, everything with the full shader.
+  CHECK(visible_runs({}, 30, 36, pass).front().count == 36);
+  pass.draws = geometry_set::opaque;
+  CHECK(visible_runs({}, 30, 36, pass).empty());
+}
+
+TEST_CASE("with opaque_shadows_depth_only each view of a transparent shadow map is a pass of its opaque surfaces, then the rest",
+          "[schedule][shadow]") {
+  scene s = example("glass_room.json");
+  s.lights.push_back(shadowed_point_light());  // a cube of six views besides the spot lights
+  render::options o;
+  const frame_schedule single = render::schedule_of(s, render::plan_of(s, o), o);
+  o.opaque_shadows_depth_only = true;
+  const render::frame_plan p = render::plan_of(s, o);
+  REQUIRE(p.shadows == render::shadow_mode::transparent);
+  CHECK(p.depth_only_shadows);
+  const frame_schedule split = render::schedule_of(s, p, o);
+  std::vector<scheduled_pass> once, twice;
+  for (const scheduled_pass& pass : single.passes)
+    if (pass.step == pass_step::shadow) once.push_back(pass);
+  for (const scheduled_pass& pass : split.passes)
+    if (pass.step == pass_step::shadow) twice.push_back(pass);
+  REQUIRE(twice.size() == 2 * once.size());
+  CHECK(split.passes.size() == single.passes.size() + once.size());
+  for (std::size_t k = 0; k < once.size(); ++k) {
+    const scheduled_pass &a = twice[2 * k], &b = twice[2 * k + 1], &whole = once[k];
+    INFO(whole.label);
+    for (const scheduled_pass* half : {&a, &b}) {
+      CHECK(half->light == whole.light);
+      CHECK(half->index == whole.index);
+      CHECK(half->area == whole.area);
+      CHECK(half->view_proj == whole.view_proj);
+      CHECK(half->state.depth == whole.state.depth);
+      CHECK(half->state.depth_write == whole.state.depth_write);
+      CHECK(half->state.blend == whole.state.blend);
+    }
+    CHECK(a.draws == geometry_set::opaque);
+    CHECK(a.clears == whole.clears);  // the first half clears what the single pass cleared
+    CHECK(a.clear_depth == whole.clear_depth);
+    CHECK(b.draws == geometry_set::not_opaque);
+    CHECK(b.clears.empty());
+    CHECK_FALSE(b.clear_depth);
+  }
+  // A map of depth alone is drawn once a view, as before.
+  o.shadows = render::shadow_mode::opaque;
+  const render::frame_plan plain = render::plan_of(s, o);
+  CHECK_FALSE(plain.depth_only_shadows);
+  for (const scheduled_pass& pass : render::schedule_of(s, plain, o).passes)
+    if (pass.step == pass_step::shadow) CHECK(pass.draws == geometry_set::everything);
 }
 
 TEST_CASE("a pass draws with its light view's matrix or the camera's, against which a point light's faces cull the scene",

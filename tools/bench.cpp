@@ -912,6 +912,7 @@ int bench(std::vector<std::string> args) {
     const std::string backend = take_option(args, "--backend", "gl");
     const bool quick = take_flag(args, "--quick");
     render::options base;
+    base.opaque_shadows_depth_only = true;  // scene_geometry's parts tell opaque surfaces from the rest
     base.width = to_int(take_option(args, "--width", quick ? "320" : "640"), 1, 8192, "--width");
     base.height = to_int(take_option(args, "--height", quick ? "180" : "360"), 1, 8192, "--height");
     base.shadow_size = to_int(take_option(args, "--shadow-size", quick ? "256" : "512"), 16, 8192, "--shadow-size");

@@ -77,6 +77,7 @@ int render(std::vector<std::string> args) {
     const std::string post_file = take_option(args, "--post", "");
     const std::string technique = take_option(args, "--technique", "interlaced");
     render::options o;
+    o.opaque_shadows_depth_only = true;  // scene_geometry's parts tell opaque surfaces from the rest
     o.width = to_int(take_option(args, "--width", "320"), 1, 8192, "--width");
     o.height = to_int(take_option(args, "--height", "180"), 1, 8192, "--height");
     o.refraction = float(to_int(take_option(args, "--refraction", "8"), 0, 256, "--refraction"));

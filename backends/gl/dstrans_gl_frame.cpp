@@ -80,7 +80,7 @@ struct renderer::impl {
   std::vector<gl::targets> fixed_targets;
   std::vector<mesh> meshes;  // the point and spot lights' volumes
   GLuint gbuffer_progs[2] = {}, light_progs[3][2] = {}, forward_light_progs[3] = {}, compose_prog = 0, compose_still_prog = 0, ambient_prog = 0,
-         shadow_prog = 0, capture_prog = 0, resolve_prog = 0, bake_prog = 0, bake_shadowed_prog = 0, particle_prog = 0;
+         shadow_prog = 0, shadow_depth_prog = 0, capture_prog = 0, resolve_prog = 0, bake_prog = 0, bake_shadowed_prog = 0, particle_prog = 0;
   std::vector<GLuint> post_progs, post_blocks;
   GLuint fullscreen_vao = 0, frame_ubo = 0, shadow_ubo = 0, materials = 0, lights = 0, material_textures = 0;
   GLuint material_texels = 0;  // a buffer texture over `materials` (slot::materials)
@@ -182,6 +182,8 @@ result<bool> renderer::impl::make_programs() {
                                                                                                   (vol ? " volume" : " fullscreen"))));
   }
   if (mode != shadow_mode::off) made.push_back(keep(shadow_prog, program(shadow_pass(sh, mode, plan.shadow_effects()), "shadow pass")));
+  if (plan.depth_only_shadows)
+    made.push_back(keep(shadow_depth_prog, program(shadow_pass(sh, mode, effects{}, true), "shadow pass, opaque surfaces")));
   if (plan.lists) {
     made.push_back(keep(capture_prog, program(capture_pass(sh, mode, o, plan.around_glass, plan.on), "capture pass")));
     made.push_back(keep(resolve_prog, program(resolve_pass(sh, mode, o, plan.around_glass), "resolve pass")));
@@ -500,7 +502,7 @@ void renderer::impl::run(const scheduled_pass& pass, const draw_geometry& draw) 
       apply(pass.state);
       glNamedBufferSubData(shadow_ubo, 0, sizeof(frame_block), &light_frames[std::size_t(i)][std::size_t(pass.index)]);
       glBindBufferBase(GL_UNIFORM_BUFFER, binding(slot::frame), shadow_ubo);
-      glUseProgram(shadow_prog);
+      glUseProgram(pass.draws == geometry_set::opaque ? shadow_depth_prog : shadow_prog);
       if (pass.area.z > 0) {  // a cube face's tile; rows from the top are GL's with glClipControl(GL_UPPER_LEFT)
         glViewport(pass.area.x, pass.area.y, pass.area.z, pass.area.w);
         glScissor(pass.area.x, pass.area.y, pass.area.z, pass.area.w);

@@ -11,7 +11,8 @@
 //   });
 //   glBlitNamedFramebuffer(r->output().framebuffer, 0, ...);                // the image, row 0 at the top
 //
-// The geometry a pass draws (pass.draws) is either every surface but hair, the hair alone, or both. Its
+// The geometry a pass draws (pass.draws) is either every surface but hair, the hair alone, or both; with
+// options::opaque_shadows_depth_only, also the opaque surfaces alone or all but them (schedule.hpp). Its
 // vertices give the world-space position at attribute 0 (vec3), the normal (hair: the tangent) at 1 (vec3)
 // and the index of its material in the description's materials at 2 (uint); attribute 3 is the
 // renderer's (leave it disabled in the engine's vertex arrays). Where the description's materials sample

@@ -164,7 +164,7 @@ struct renderer::impl {
   vertex_input vertices;
   int slots = 2;
 
-  program gbuffer[2], shadow, light[3][2], ambient, forward_light[3], compose, compose_still, capture, resolve, particle, bake[2];
+  program gbuffer[2], shadow, shadow_depth, light[3][2], ambient, forward_light[3], compose, compose_still, capture, resolve, particle, bake[2];
   std::vector<program> post;
 
   std::vector<buffer> owned;  // every buffer made once
@@ -268,7 +268,7 @@ renderer::impl::~impl() {
   dev.destroy(out.volume_atlas);
   for (image& i : shadow_layers) dev.destroy(i);
   for (buffer& b : owned) dev.destroy(b);
-  for (program* p : {&gbuffer[0], &gbuffer[1], &shadow, &ambient, &compose, &compose_still, &capture, &resolve, &particle, &bake[0], &bake[1]}) dev.destroy(p->pipe);
+  for (program* p : {&gbuffer[0], &gbuffer[1], &shadow, &shadow_depth, &ambient, &compose, &compose_still, &capture, &resolve, &particle, &bake[0], &bake[1]}) dev.destroy(p->pipe);
   for (auto& row : light) for (program& p : row) dev.destroy(p.pipe);
   for (program& p : forward_light) dev.destroy(p.pipe);
   for (program& p : post) dev.destroy(p.pipe);
@@ -320,6 +320,9 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
   if (mode != shadow_mode::off)
     made.push_back(graphics(shadow, shadow_pass(sh, mode, plan.shadow_effects()), formats_of(shadow_targets(mode)), "shadow pass",
                             plan.textured_shadows ? scene_state : without_texture_coordinates(scene_state)));
+  if (plan.depth_only_shadows)
+    made.push_back(graphics(shadow_depth, shadow_pass(sh, mode, effects{}, true), formats_of(shadow_targets(mode)),
+                            "shadow pass, opaque surfaces", without_texture_coordinates(scene_state)));
   for (shadow_mode k : all_lookups)
     for (int vol = 0; vol < 2 && !plan.forward && plan.uses(k); ++vol) {
       // Volumes are drawn with their back faces, depth clamped (dstrans/frame/plan.hpp, volume).
@@ -619,7 +622,7 @@ const program& renderer::impl::program_of(const scheduled_pass& pass) const {
   switch (pass.step) {
     case pass_step::gbuffer: return gbuffer[pass.index];
     case pass_step::ambient: return ambient;
-    case pass_step::shadow: return shadow;
+    case pass_step::shadow: return pass.draws == geometry_set::opaque ? shadow_depth : shadow;
     case pass_step::light: return light[int(plan.lookups[i])][pass.kind == pass_kind::light_volume ? 1 : 0];
     case pass_step::forward_light: return forward_light[int(plan.lookups[i])];
     case pass_step::bake: return bake[0];

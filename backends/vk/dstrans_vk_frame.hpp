@@ -29,7 +29,8 @@
 // The engine's device needs dynamic rendering and the features depthClamp (light volumes) and
 // fragmentStoresAndAtomics (the k-buffer's lists).
 //
-// The geometry a pass draws (pass.draws) is every surface but hair, the hair alone, or both, at vertex
+// The geometry a pass draws (pass.draws) is every surface but hair, the hair alone, or both (with
+// options::opaque_shadows_depth_only also the opaque surfaces alone or all but them: schedule.hpp), at vertex
 // bindings and attributes `vertex_input` (by default three streams: binding 0 the world-space position
 // (vec3) at location 0, binding 1 the normal (hair: the tangent, vec3) at 1, binding 2 the material index
 // (uint) at 2). Binding 3 is the renderer's (a light pass's light index). Draw with firstInstance 0. Where

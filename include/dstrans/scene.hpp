@@ -61,6 +61,8 @@ struct material {
   // elsewhere the surface is opaque.
   float alpha_cutoff = 0.0f;
   bool transparent() const { return shader::dst_transparent(alpha) && !(alpha_cutoff > 0.0f) && !hair; }
+  // Whether every fragment of it is opaque whatever its texture: neither transparent, alpha-tested nor hair.
+  bool opaque() const { return !shader::dst_transparent(alpha) && !(alpha_cutoff > 0.0f) && !hair; }
   // Whether the material samples a texture or tests alpha (effect::textures).
   bool textured() const { return !hair && (texture >= 0 || alpha_cutoff > 0.0f); }
 };
@@ -129,12 +131,14 @@ struct scene {
   std::vector<texture> textures;  // what materials sample (material::texture)
 };
 
-// One object's indices in a scene_mesh, `count` from `first`, and a sphere that holds its vertices (world
-// space), against which a pass culls it (frame/culling.hpp).
+// One object's indices in a scene_mesh, `count` from `first`, a sphere that holds its vertices (world
+// space), against which a pass culls it (frame/culling.hpp), and whether its material is opaque
+// (material::opaque: geometry_set::opaque draws it).
 struct mesh_part {
   std::size_t first = 0, count = 0;
   glm::vec3 centre{0.0f};
   float radius = 0.0f;
+  bool opaque = false;
 };
 
 // A whole scene in world space, for one draw call: vertex i has positions[i], normals[i], materials[i]
@@ -176,7 +180,8 @@ inline scene_mesh flatten(const scene& s) {
         m.materials.push_back(o.material);
         if (uvs) m.uvs.push_back(i < o.geometry.uvs.size() ? o.geometry.uvs[i] : glm::vec2(0.0f));
       }
-      mesh_part part{m.indices.size(), o.geometry.indices.size(), 0.5f * (lo + hi), 0.0f};
+      mesh_part part{m.indices.size(), o.geometry.indices.size(), 0.5f * (lo + hi), 0.0f,
+                     o.material < s.materials.size() && s.materials[o.material].opaque()};
       for (std::size_t i = base; i < m.positions.size(); ++i) part.radius = std::max(part.radius, glm::length(m.positions[i] - part.centre));
       for (std::uint32_t i : o.geometry.indices) m.indices.push_back(base + i);
       m.parts.push_back(part);

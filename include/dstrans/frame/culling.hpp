@@ -38,15 +38,18 @@ inline bool outside_clip(const glm::mat4& view_proj, glm::vec3 centre, float rad
 
 // The runs of indices `pass` draws of a flattened scene (scene_mesh: its `parts` in index order, hair from
 // `hair_first`, `count` indices in all): drawn_indices' run less the parts outside the pass's clip
-// volume, neighbouring parts drawn as one run. Without parts, drawn_indices' run.
+// volume, neighbouring parts drawn as one run; `opaque` and `not_opaque` take the parts whose mesh_part::opaque
+// says so. Without parts, drawn_indices' run.
 inline std::vector<index_run> visible_runs(const std::vector<mesh_part>& parts, std::size_t hair_first, std::size_t count,
                                            const scheduled_pass& pass) {
-  const index_run whole = drawn_indices(pass.draws, hair_first, count);
+  const bool by_material = pass.draws == geometry_set::opaque || pass.draws == geometry_set::not_opaque;
+  const index_run whole = by_material && !parts.empty() ? index_run{0, count} : drawn_indices(pass.draws, hair_first, count);
   if (whole.count == 0) return {};
   if (parts.empty()) return {whole};
   std::vector<index_run> out;
   for (const mesh_part& part : parts) {
     if (part.first < whole.first || part.first + part.count > whole.first + whole.count || part.count == 0) continue;
+    if (by_material && part.opaque != (pass.draws == geometry_set::opaque)) continue;
     if (outside_clip(pass.view_proj, part.centre, part.radius, pass.state.depth_clamp)) continue;
     if (!out.empty() && out.back().first + out.back().count == part.first)
       out.back().count += part.count;

@@ -52,7 +52,9 @@ constexpr int gbuffer_depth_slot = 3;  // the depth attachment's binding after a
 
 // `shaders` are the pass shaders: the embedded ones, or a folder's.
 result<pass_sources> gbuffer_pass(const pass_shaders& shaders, layer which, effects on, const options& o);
-result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode mode, effects on);
+// `opaque_surfaces`: the pass of a transparent map's opaque surfaces (frame_plan::depth_only_shadows), which
+// writes their depth and the clear colour without reading their material (DST_DEPTH_ONLY).
+result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode mode, effects on, bool opaque_surfaces = false);
 result<pass_sources> light_pass(const pass_shaders& shaders, shadow_mode mode, bool volume, const options& o);
 // With temporal interlacing, the compose pass has a variant for frames whose camera stood still since the
 // previous one (frame_block::interlace.w): `still_camera` (DST_STILL_CAMERA).
@@ -224,11 +226,12 @@ inline result<pass_sources> gbuffer_pass(const pass_shaders& shaders, layer whic
   return pass_detail::scene_vertex(shaders, std::move(p), pass_detail::texture_switches(on));
 }
 
-inline result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode mode, effects on) {
+inline result<pass_sources> shadow_pass(const pass_shaders& shaders, shadow_mode mode, effects on, bool opaque_surfaces) {
   pass_sources p;
   pass_detail::add_shadow_layout(p.fragment, mode, glsl::side::write);
   if (mode == shadow_mode::transparent) glsl::add_interlace<pass_detail::I>(p.fragment);
   std::vector<std::string> switches = pass_detail::shadow_switches(mode);
+  if (opaque_surfaces) switches.push_back("DST_DEPTH_ONLY");
   if (on.has(effect::many_layers)) switches.push_back(effect_switch(effect::many_layers));
   for (const std::string& s : pass_detail::texture_switches(on)) switches.push_back(s);
   if (auto ok = pass_detail::finish(p.fragment, shaders, {"shadow.frag.glsl"}, switches); !ok) return failure{ok.error()};
@@ -338,6 +341,8 @@ inline result<std::vector<named_pass>> pipeline_passes(const pass_shaders& shade
   if (auto ok = add("gbuffer pass", gbuffer_pass(shaders, layer::interlaced, plan.on, o)); !ok) return failure{ok.error()};
   if (plan.shadows != shadow_mode::off)
     if (auto ok = add("shadow pass", shadow_pass(shaders, plan.shadows, plan.shadow_effects())); !ok) return failure{ok.error()};
+  if (plan.depth_only_shadows)
+    if (auto ok = add("shadow pass, opaque surfaces", shadow_pass(shaders, plan.shadows, effects{}, true)); !ok) return failure{ok.error()};
   for (shadow_mode k : all_lookups)
     for (int vol = 0; vol < 2; ++vol) {
       bool used = false;

@@ -79,6 +79,12 @@ struct options {
   int shadow_filter = 1;
   int shadow_size = 512;
   shadow_mode shadows = shadow_mode::transparent;  // for the lights that cast them, of every kind
+  // A transparent shadow map drawn in two passes a view: first the opaque surfaces (geometry_set::opaque),
+  // their depth and the clear colour without their material (shadow.frag.glsl's DST_DEPTH_ONLY), then the
+  // rest with the full shader (geometry_set::not_opaque), where a single pass runs the full shader for every
+  // fragment. The same map for every lookup: Eq. 3.1 reads an opaque texel's alpha and depth, never its
+  // colour. For draw callbacks that tell the two sets apart (scene_mesh::parts do).
+  bool opaque_shadows_depth_only = false;
   // Light through glass: the thesis's min(I_L, C) (Eq. 3.2), or the physically based I_L C.
   bool physical_transmittance = false;
   int frames = 1;  // frames rendered with the same resources; times are their medians
@@ -114,6 +120,8 @@ struct frame_plan {
   effects on;
   pipeline_plan pipeline;  // the passes and targets of `on` (dstrans plan prints it)
   shadow_mode shadows;     // the shadow map: off, opaque (depth), transparent (depth and colour)
+  // A transparent map's opaque surfaces drawn first, by depth alone (options::opaque_shadows_depth_only).
+  bool depth_only_shadows;
   std::vector<shadow_mode> lookups;  // per light: no shadow, the plain lookup, or Eq. 3.1's
   bool forward, forward_depth, peeling;
   bool exact;              // technique::reference
@@ -463,6 +471,7 @@ inline frame_plan plan_of(const scene& s, const options& o) {
                                 (sees_transparency(s, l) || o.force.has(effect::transparent_shadows))
                             ? shadow_mode::transparent
                             : shadow_mode::opaque);
+  p.depth_only_shadows = p.shadows == shadow_mode::transparent && o.opaque_shadows_depth_only;
   p.forward = is_forward(o.method);
   p.forward_depth = o.method == technique::forward_depth;
   p.peeling = o.method == technique::peeling;
@@ -645,22 +654,27 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
     std::vector<std::string> reads{"scene"};
     if (shadowed) {
       const int views = shadow_views(lights[i]);
-      for (int v = 0; v < views; ++v) {
-        scheduled_pass& sh = add(pass_step::shadow, "shadow", "shadow pass, light " + n + (views > 1 ? ", face " + std::to_string(v) : ""),
-                                 pass_kind::geometry, l, {"scene"}, {"shadow map"});
-        sh.index = v;
-        sh.view_proj = light_frame(s, lights[i], o, v).view_proj;
-        sh.state = depth_tested;
-        sh.draws = geometry_set::everything;
-        if (v == 0)  // a cube's later faces keep what the first one cleared
-          sh.clears = p.shadows == shadow_mode::transparent ? std::vector<glm::vec4>{far_plane, far_plane} : std::vector<glm::vec4>{far_plane};
-        sh.clear_depth = v == 0;
-        if (views > 1) {
-          const glm::ivec2 size(o.shadow_size);
-          const int tile = shader::dst_cube_tile_size(size);
-          sh.area = glm::ivec4(shader::dst_cube_tile_origin(v, size), tile, tile);
+      for (int v = 0; v < views; ++v)
+        for (const geometry_set set : p.depth_only_shadows ? std::vector<geometry_set>{geometry_set::opaque, geometry_set::not_opaque}
+                                            : std::vector<geometry_set>{geometry_set::everything}) {
+          const bool first = set != geometry_set::not_opaque;
+          scheduled_pass& sh = add(pass_step::shadow, "shadow",
+                                   "shadow pass, light " + n + (views > 1 ? ", face " + std::to_string(v) : "") +
+                                       (set == geometry_set::opaque ? ", opaque surfaces" : set == geometry_set::not_opaque ? ", the rest" : ""),
+                                   pass_kind::geometry, l, {"scene"}, {"shadow map"});
+          sh.index = v;
+          sh.view_proj = light_frame(s, lights[i], o, v).view_proj;
+          sh.state = depth_tested;
+          sh.draws = set;
+          if (v == 0 && first)  // a cube's later faces keep what the first one cleared
+            sh.clears = p.shadows == shadow_mode::transparent ? std::vector<glm::vec4>{far_plane, far_plane} : std::vector<glm::vec4>{far_plane};
+          sh.clear_depth = v == 0 && first;
+          if (views > 1) {
+            const glm::ivec2 size(o.shadow_size);
+            const int tile = shader::dst_cube_tile_size(size);
+            sh.area = glm::ivec4(shader::dst_cube_tile_origin(v, size), tile, tile);
+          }
         }
-      }
       if (smoke.baking)
         add(pass_step::bake_light, "bake", "bake pass, light " + n, pass_kind::dispatch, l, {"shadow map"}, {"volume atlas"});
       if (p.shadow_layers)

@@ -62,8 +62,11 @@ struct pass_state {
 };
 
 // What the engine draws in a geometry pass: every surface but hair, the hair, or both; the particles' quads
-// and the lights' meshes are the executor's own.
-enum class geometry_set { none, surfaces, hair, everything };
+// and the lights' meshes are the executor's own. With options::opaque_shadows_depth_only a transparent
+// shadow map is drawn in two passes a view: `opaque`, the surfaces of opaque materials (material::opaque),
+// by their depth alone, then `not_opaque`, everything else (glass, alpha-tested surfaces, hair). A callback
+// that cannot tell them apart may draw nothing for the first and everything for the second.
+enum class geometry_set { none, surfaces, hair, everything, opaque, not_opaque };
 
 struct scheduled_pass {
   scheduled_pass() = default;
@@ -96,12 +99,12 @@ struct frame_schedule {
 };
 
 // Of a flattened scene's `count` indices, hair last from `hair_first` (dstrans::flatten), the run a pass
-// that draws `set` draws.
+// that draws `set` draws, not knowing which objects are opaque: none for `opaque`, all for `not_opaque`.
 struct index_run {
   std::size_t first = 0, count = 0;
 };
 inline index_run drawn_indices(geometry_set set, std::size_t hair_first, std::size_t count) {
-  if (set == geometry_set::none) return {};
+  if (set == geometry_set::none || set == geometry_set::opaque) return {};
   if (set == geometry_set::surfaces) return {0, hair_first};
   if (set == geometry_set::hair) return {hair_first, count - hair_first};
   return {0, count};
