@@ -228,9 +228,9 @@ TEST_CASE("every example scene and technique renders as its recording", "[render
 }
 
 // A transparent shadow map's opaque surfaces drawn first by their depth alone, the rest after them, make the
-// same frame as one pass of the full shader: the lookups never read an opaque texel's colour. Covered: spot lights, a
-// point light's cube, hair (drawn with the rest) and an alpha-tested material, which must not cast the
-// shadow of the fragments it drops.
+// same frame as one pass of the full shader: the lookups never read an opaque texel's colour. Covered: spot
+// lights, a point light's cube, hair (drawn with the rest) and an alpha-tested material, which must not
+// cast the shadow of the fragments it drops.
 TEST_CASE("opaque surfaces drawn by depth alone into a transparent shadow map change no pixel", "[render][gl][vk][shadow]") {
   scene cut = example("glass_room.json");
   std::size_t k = 1;
