@@ -43,6 +43,16 @@ TEST_CASE("a shared block brings the blocks it uses, once, before itself", "[for
   CHECK(code.find("struct dst_light_sample") == code.rfind("struct dst_light_sample"));
 }
 
+TEST_CASE("each shared block is formatted once, as format_shared and definitions give it", "[formula][glsl]") {
+  for (const shared_text* block : detail::shared_blocks()) {
+    INFO(block->file << ":" << block->line);
+    const detail::formatted_block& once = detail::formatted(*block);
+    CHECK(once.text == glsl::format_shared(block->code));
+    CHECK(once.names == glsl::definitions(block->code));
+    CHECK(&detail::formatted(*block) == &once);
+  }
+}
+
 TEST_CASE("argument names and types come from the shared text and the C++ signature", "[formula]") {
   const formula* f = find_formula("dst_rows_partner");
   REQUIRE(f);

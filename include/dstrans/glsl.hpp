@@ -17,8 +17,11 @@
 #include <cctype>
 #include <cstddef>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "detail/shared.hpp"
@@ -98,10 +101,13 @@ inline std::string format_shared(const char* code) {
   return out;
 }
 
-// The names shared block `code` defines at its top level: its structs and its functions.
-inline std::vector<std::string> definitions(const char* code) {
+}  // namespace dstrans::glsl
+
+namespace dstrans::detail {
+// The names formatted shared code defines at its top level: its structs and its functions.
+inline std::vector<std::string> top_level_names(const std::string& formatted) {
   std::vector<std::string> names;
-  std::istringstream lines(format_shared(code));
+  std::istringstream lines(formatted);
   for (std::string line; std::getline(lines, line);) {
     if (line.empty() || line[0] == ' ' || line.back() != '{') continue;
     if (line.rfind("struct ", 0) == 0) {
@@ -113,6 +119,33 @@ inline std::vector<std::string> definitions(const char* code) {
   }
   return names;
 }
+
+// A shared block as GLSL and the names it defines.
+struct formatted_block {
+  std::string text;
+  std::vector<std::string> names;
+};
+
+// `block` formatted once for the program's life: assembling one renderer's shaders asks for every block's
+// names once per shader and per block it adds.
+inline const formatted_block& formatted(const shared_text& block) {
+  static std::mutex lock;
+  static std::map<const shared_text*, formatted_block> done;  // a node map: references stay valid
+  const std::lock_guard<std::mutex> hold(lock);
+  auto at = done.find(&block);
+  if (at == done.end()) {
+    std::string text = glsl::format_shared(block.code);
+    std::vector<std::string> names = top_level_names(text);
+    at = done.emplace(&block, formatted_block{std::move(text), std::move(names)}).first;
+  }
+  return at->second;
+}
+}  // namespace dstrans::detail
+
+namespace dstrans::glsl {
+
+// The names shared block `code` defines at its top level: its structs and its functions.
+inline std::vector<std::string> definitions(const char* code) { return detail::top_level_names(format_shared(code)); }
 
 // The GLSL a source is written in. Before GLSL 4.20 a sampler cannot state its binding: the generators
 // then declare it by name alone, and the engine points it at a texture unit with glUniform1i.
@@ -230,7 +263,7 @@ class source {
       }
     }
     for (const shared_text* block : detail::shared_blocks())
-      for (const std::string& name : definitions(block->code))
+      for (const std::string& name : detail::formatted(*block).names)
         if (uses(text, name)) {
           add_shared(*block);
           break;
@@ -247,13 +280,13 @@ class source {
     shared_.push_back(&block);
     for (const shared_text* other : detail::shared_blocks()) {
       if (other == &block) continue;
-      for (const std::string& name : definitions(other->code))
+      for (const std::string& name : detail::formatted(*other).names)
         if (uses(block.code, name)) {
           add_shared(*other);
           break;
         }
     }
-    const std::string text = format_shared(block.code);
+    const std::string& text = detail::formatted(block).text;
     for (char c : text)
       if (c == '\n') lines_.push_back({block.file, block.line});
     code_ += text;
@@ -292,9 +325,9 @@ class source {
 
  private:
   // Whether `code` mentions identifier `name` as a whole word.
-  static bool uses(const std::string& code, const std::string& name) {
+  static bool uses(std::string_view code, std::string_view name) {
     auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-    for (std::size_t at = code.find(name); at != std::string::npos; at = code.find(name, at + 1))
+    for (std::size_t at = code.find(name); at != std::string_view::npos; at = code.find(name, at + 1))
       if ((at == 0 || !word(code[at - 1])) && (at + name.size() == code.size() || !word(code[at + name.size()])))
         return true;
     return false;
