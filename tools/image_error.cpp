@@ -16,27 +16,31 @@ constexpr double pi = 3.14159265358979323846;
 struct plane {
   int width = 0, height = 0;
   std::vector<double> v;
-  double at(int x, int y) const {
-    return v[std::size_t(std::clamp(y, 0, height - 1)) * std::size_t(width) + std::size_t(std::clamp(x, 0, width - 1))];
-  }
 };
+
+// `line` (n values, `stride` apart) correlated with kernel k (of odd length, centred) into `out` (the same
+// stride), borders replicated: the taps read a padded copy, so that none is clamped.
+void correlate(const double* line, int n, std::size_t stride, const std::vector<double>& k, std::vector<double>& padded,
+               double* out) {
+  const int r = int(k.size() / 2);
+  padded.resize(std::size_t(n + 2 * r));
+  for (int i = 0; i < n + 2 * r; ++i) padded[std::size_t(i)] = line[std::size_t(std::clamp(i - r, 0, n - 1)) * stride];
+  for (int x = 0; x < n; ++x) {
+    const double* taps = padded.data() + x;
+    double s = 0.0;
+    for (std::size_t i = 0; i < k.size(); ++i) s += k[i] * taps[i];
+    out[std::size_t(x) * stride] = s;
+  }
+}
 
 // `p` correlated with kx along rows and ky along columns (both of odd length, centred), borders replicated.
 plane filter(const plane& p, const std::vector<double>& kx, const std::vector<double>& ky) {
-  const int rx = int(kx.size() / 2), ry = int(ky.size() / 2);
   plane rows{p.width, p.height, std::vector<double>(p.v.size())}, out = rows;
-  for (int y = 0; y < p.height; ++y)
-    for (int x = 0; x < p.width; ++x) {
-      double s = 0.0;
-      for (int i = -rx; i <= rx; ++i) s += kx[std::size_t(i + rx)] * p.at(x + i, y);
-      rows.v[std::size_t(y) * std::size_t(p.width) + std::size_t(x)] = s;
-    }
-  for (int y = 0; y < p.height; ++y)
-    for (int x = 0; x < p.width; ++x) {
-      double s = 0.0;
-      for (int j = -ry; j <= ry; ++j) s += ky[std::size_t(j + ry)] * rows.at(x, y + j);
-      out.v[std::size_t(y) * std::size_t(p.width) + std::size_t(x)] = s;
-    }
+  std::vector<double> padded;
+  const std::size_t w = std::size_t(p.width);
+  for (std::size_t y = 0; y < std::size_t(p.height); ++y)
+    correlate(p.v.data() + y * w, p.width, 1, kx, padded, rows.v.data() + y * w);
+  for (std::size_t x = 0; x < w; ++x) correlate(rows.v.data() + x, p.height, w, ky, padded, out.v.data() + x);
   return out;
 }
 
