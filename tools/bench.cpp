@@ -44,14 +44,16 @@ namespace {
 using json = nlohmann::ordered_json;
 
 const char* const usage =
-    "usage: dstrans bench [--quick] --out DIR [--backend gl|vk] [--device N|NAME] [--width W --height H]\n"
-    "                     [--shadow-size N] [--frames N] [--pairs N]\n"
+    "usage: dstrans bench [--quick] --out DIR [--backend gl|vk [--backend-only]] [--device N|NAME]\n"
+    "                     [--width W --height H] [--shadow-size N] [--frames N] [--pairs N]\n"
     "renders glass_room and its variants with every technique and setting the thesis compared, and writes\n"
-    "DIR/results.json and DIR/report.md; --quick measures fewer light counts at a smaller size (320x180,\n"
-    "256^2 shadow maps, 5 frames a run; else 640x360, 512^2, 9), which the other options override. --device\n"
-    "chooses the GPU by index or part of its name for both APIs (`--device list` lists them); every record\n"
-    "names the device and driver it ran on. A paired comparison times frames of A and B in turns until its\n"
-    "95% interval is within 3% of the ratio or it has timed 20 pairs (--quick; else 60), or --pairs N\n";
+    "DIR/results.json and DIR/report.md; the sections beyond the thesis's tables also run on the other API\n"
+    "where the machine has it, unless --backend-only. --quick measures fewer light counts at a smaller size\n"
+    "(320x180, 256^2 shadow maps, 5 frames a run; else 640x360, 512^2, 9), which the other options\n"
+    "override. --device chooses the GPU by index or part of its name for both APIs (`--device list` lists\n"
+    "them); every record names the device and driver it ran on. A paired comparison times frames of A and B\n"
+    "in turns until its 95% interval is within 3% of the ratio or it has timed 20 pairs (--quick; else 60),\n"
+    "or --pairs N\n";
 
 // Runs `argv` (found on the PATH) and waits for it: a failure unless it exits 0.
 result<bool> run_program(const std::vector<std::string>& argv) {
@@ -910,6 +912,7 @@ int bench(std::vector<std::string> args) {
     }
     const std::string out = take_option(args, "--out", "");
     const std::string backend = take_option(args, "--backend", "gl");
+    const bool backend_only = take_flag(args, "--backend-only");
     const bool quick = take_flag(args, "--quick");
     render::options base;
     base.opaque_shadows_depth_only = true;  // scene_geometry's parts tell opaque surfaces from the rest
@@ -1153,7 +1156,9 @@ int bench(std::vector<std::string> args) {
       }
     }
     std::vector<std::pair<std::string, std::string>> strips;  // the temporal benchmark's crops, a PNG a backend
-    for (const std::string& b : {backend, std::string(backend == "gl" ? "vk" : "gl")}) {
+    std::vector<std::string> section_backends{backend};
+    if (!backend_only) section_backends.push_back(backend == "gl" ? "vk" : "gl");
+    for (const std::string& b : section_backends) {
       auto other = b == backend ? result<std::unique_ptr<gpu>>(failure{"unused"}) : open_gpu(b, device);
       if (b != backend && !other) {
         std::fprintf(stderr, "dstrans bench: hair, smoke and post-processing on %s skipped: %s\n", b.c_str(), other.error().c_str());
