@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <random>
@@ -382,6 +383,36 @@ TEST_CASE("visible_runs splits a pass's parts by mesh_part::opaque for the two p
   CHECK(visible_runs({}, 30, 36, pass).front().count == 36);
   pass.draws = geometry_set::opaque;
   CHECK(visible_runs({}, 30, 36, pass).empty());
+}
+
+TEST_CASE("draws tells an engine's callback, for every set, the objects visible_runs draws of dstrans's own mesh", "[schedule][culling]") {
+  material opaque, glass, cut, hair, unknown;
+  glass.alpha = 0.4f;
+  cut.alpha_cutoff = 0.5f;  // alpha-tested: its dropped fragments cast no shadow
+  hair.hair = true;
+  unknown.alpha = NAN;
+  const std::vector<material> materials = {opaque, glass, cut, unknown, hair};  // hair last, as flatten puts it
+  std::vector<mesh_part> parts;
+  for (std::size_t k = 0; k < materials.size(); ++k)
+    parts.push_back({6 * k, 6, glm::vec3(0, 0, -5), 1.0f, materials[k].opaque()});
+  scheduled_pass pass;
+  pass.view_proj = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 1.0f, 10.0f);
+  for (geometry_set set : {geometry_set::none, geometry_set::surfaces, geometry_set::hair, geometry_set::everything,
+                           geometry_set::opaque, geometry_set::not_opaque}) {
+    pass.draws = set;
+    const std::vector<index_run> runs = visible_runs(parts, 24, 30, pass);
+    for (std::size_t k = 0; k < materials.size(); ++k) {
+      bool drawn = false;
+      for (const index_run& r : runs) drawn = drawn || (r.first <= 6 * k && 6 * k + 6 <= r.first + r.count);
+      INFO("set " << int(set) << ", material " << k);
+      CHECK(draws(set, materials[k]) == drawn);
+    }
+  }
+  CHECK(draws(geometry_set::opaque, opaque));
+  CHECK_FALSE(draws(geometry_set::opaque, cut));
+  CHECK(draws(geometry_set::not_opaque, hair));
+  CHECK_FALSE(draws(geometry_set::surfaces, hair));
+  CHECK_FALSE(draws(geometry_set::none, opaque));
 }
 
 TEST_CASE("with opaque_shadows_depth_only each view of a transparent shadow map is a pass of its opaque surfaces, then the rest",

@@ -399,6 +399,7 @@ int whole_frame(const std::string& out, int w, int h) {
   o.width = w;
   o.height = h;
   o.shadow_size = 1024;
+  o.opaque_shadows_depth_only = true;  // the callback tells opaque materials from the rest (dstrans::draws)
   auto r = dstrans::gl::renderer::create(world, o);
   if (!r) {
     std::fprintf(stderr, "engine_gl: %s\n", r.error().c_str());
@@ -407,9 +408,7 @@ int whole_frame(const std::string& out, int w, int h) {
   (*r)->render(world.view, [&](const dstrans::scheduled_pass& pass) {
     for (const bool hair : {false, true})  // surfaces first, as dstrans orders them
       for (const drawn_mesh& m : meshes) {
-        if (m.hair != hair || (pass.draws == dstrans::geometry_set::surfaces && m.hair) ||
-            (pass.draws == dstrans::geometry_set::hair && !m.hair))
-          continue;
+        if (m.hair != hair || !dstrans::draws(pass.draws, world.materials[m.material])) continue;
         glVertexAttribI4ui(2, m.material, 0, 0, 0);
         glBindVertexArray(m.shape.vao);
         glDrawElements(GL_TRIANGLES, m.shape.count, GL_UNSIGNED_INT, nullptr);

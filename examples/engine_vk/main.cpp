@@ -638,6 +638,7 @@ bool whole_frame(const gpu& g, allocator& mem, const std::string& out, int w, in
   o.width = w;
   o.height = h;
   o.shadow_size = 1024;
+  o.opaque_shadows_depth_only = true;  // the callback tells opaque materials from the rest (dstrans::draws)
   auto r = dstrans::vk::renderer::create(**dev, world, o, dstrans::pass_shaders(), layout);
   bool written = false;
   if (!r) {
@@ -654,9 +655,7 @@ bool whole_frame(const gpu& g, allocator& mem, const std::string& out, int w, in
     (*r)->record(cmd, world.view, [&](VkCommandBuffer c, const dstrans::scheduled_pass& pass) {
       for (const bool hair : {false, true})  // surfaces first, as dstrans orders them
         for (const drawn_mesh& m : meshes) {
-          if (m.hair != hair || (pass.draws == dstrans::geometry_set::surfaces && m.hair) ||
-              (pass.draws == dstrans::geometry_set::hair && !m.hair))
-            continue;
+          if (m.hair != hair || !dstrans::draws(pass.draws, world.materials[m.material])) continue;
           const VkBuffer streams[] = {m.shape.vertices.handle, materials.handle};
           const VkDeviceSize offsets[] = {0, VkDeviceSize(m.material) * sizeof(uint32_t)};  // instance 0 reads its material
           vkCmdBindVertexBuffers(c, 0, 2, streams, offsets);

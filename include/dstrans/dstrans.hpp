@@ -10,6 +10,7 @@
 
 #include "format.hpp"
 #include "frame/blocks.hpp"
+#include "frame/culling.hpp"
 #include "frame/passes.hpp"
 #include "frame/plan.hpp"
 #include "frame/schedule.hpp"

@@ -61,15 +61,15 @@ struct vertex {
 struct object_mesh {
   std::vector<vertex> vertices;
   std::vector<std::uint32_t> indices;
-  bool hair = false;
+  dstrans::material material;
 };
 std::vector<object_mesh> meshes_of(const dstrans::scene& s) {
   std::vector<object_mesh> out;
   for (const dstrans::object& ob : s.objects) {
     object_mesh m;
-    m.hair = s.materials[ob.material].hair;
+    m.material = s.materials[ob.material];
     for (std::size_t i = 0; i < ob.geometry.positions.size(); ++i) {
-      const glm::mat3 n = m.hair ? glm::mat3(ob.transform) : glm::transpose(glm::inverse(glm::mat3(ob.transform)));
+      const glm::mat3 n = m.material.hair ? glm::mat3(ob.transform) : glm::transpose(glm::inverse(glm::mat3(ob.transform)));
       m.vertices.push_back({glm::vec3(ob.transform * glm::vec4(ob.geometry.positions[i], 1.0f)), ob.material,
                             glm::normalize(n * ob.geometry.normals[i])});
     }
@@ -80,8 +80,7 @@ std::vector<object_mesh> meshes_of(const dstrans::scene& s) {
 }
 // Whether the engine draws `m` in `pass`: surfaces before hair, as the renderers order them.
 bool drawn(const object_mesh& m, bool hair_round, const dstrans::scheduled_pass& pass) {
-  if (m.hair != hair_round) return false;
-  return pass.draws == dstrans::geometry_set::everything || (pass.draws == dstrans::geometry_set::hair) == m.hair;
+  return m.material.hair == hair_round && dstrans::draws(pass.draws, m.material);
 }
 
 dstrans::render::options small() {
@@ -89,6 +88,7 @@ dstrans::render::options small() {
   o.width = 64;
   o.height = 36;
   o.shadow_size = 256;
+  o.opaque_shadows_depth_only = true;  // drawn() tells opaque materials from the rest
   return o;
 }
 

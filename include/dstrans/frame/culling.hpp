@@ -7,6 +7,8 @@
 //   const dstrans::scene_mesh m = dstrans::flatten(s);
 //   for (const dstrans::index_run& run : dstrans::visible_runs(m.parts, m.hair_first, m.indices.size(), pass))
 //     draw_my_indices(run.first, run.count);
+//   // or, for an engine's own meshes, each with its dstrans material:
+//   if (dstrans::draws(pass.draws, s.materials[mesh.material])) draw_my_mesh(mesh);
 #pragma once
 
 #include <vector>
@@ -17,6 +19,20 @@
 #include "schedule.hpp"
 
 namespace dstrans {
+
+// Whether a pass that draws `set` draws an object of material `m`: hair alone in `hair`, never in
+// `surfaces`; `opaque` the material::opaque() ones, `not_opaque` the others (options::opaque_shadows_depth_only).
+inline bool draws(geometry_set set, const material& m) {
+  switch (set) {
+    case geometry_set::none: return false;
+    case geometry_set::surfaces: return !m.hair;
+    case geometry_set::hair: return m.hair;
+    case geometry_set::everything: return true;
+    case geometry_set::opaque: return m.opaque();
+    case geometry_set::not_opaque: return !m.opaque();
+  }
+  return false;
+}
 
 // Whether the sphere at `centre` of `radius` (world space) lies wholly outside the clip volume of
 // `view_proj`: beyond one of its planes -w <= x <= w, -w <= y <= w and, unless `depth_clamped` (depth
