@@ -69,7 +69,7 @@ std::vector<object_mesh> meshes_of(const dstrans::scene& s) {
     object_mesh m;
     m.material = s.materials[ob.material];
     for (std::size_t i = 0; i < ob.geometry.positions.size(); ++i) {
-      const glm::mat3 n = m.material.hair ? glm::mat3(ob.transform) : glm::transpose(glm::inverse(glm::mat3(ob.transform)));
+      const glm::mat3 t(ob.transform), n = m.material.hair ? t : glm::transpose(glm::inverse(t));
       m.vertices.push_back({glm::vec3(ob.transform * glm::vec4(ob.geometry.positions[i], 1.0f)), ob.material,
                             glm::normalize(n * ob.geometry.normals[i])});
     }
