@@ -105,6 +105,52 @@ TEST_CASE("a schedule has no pass for an effect the frame does not draw", "[sche
   CHECK(count(forward, "blend") == 1);
 }
 
+TEST_CASE("schedule_of and particle_plan_of from the scene's light blocks equal the plain ones; a light's lookup is "
+          "transparent where it sees glass", "[schedule]") {
+  auto same_passes = [](const frame_schedule& a, const frame_schedule& b) {
+    REQUIRE(a.passes.size() == b.passes.size());
+    CHECK(a.cleared == b.cleared);
+    for (std::size_t k = 0; k < a.passes.size(); ++k) {
+      INFO(a.passes[k].label);
+      CHECK(a.passes[k].label == b.passes[k].label);
+      CHECK((a.passes[k].light == b.passes[k].light && a.passes[k].index == b.passes[k].index));
+      CHECK(a.passes[k].draws == b.passes[k].draws);
+      CHECK(a.passes[k].view_proj == b.passes[k].view_proj);
+    }
+  };
+  auto same_lights = [](const std::vector<volume_light>& a, const std::vector<volume_light>& b) {
+    REQUIRE(a.size() == b.size());
+    for (std::size_t k = 0; k < a.size(); ++k)
+      CHECK((a[k].position_kind == b[k].position_kind && a[k].direction_range == b[k].direction_range &&
+             a[k].colour_cos_outer == b[k].colour_cos_outer && a[k].cos_inner == b[k].cos_inner));
+  };
+  render::options o;
+  o.shadows = render::shadow_mode::transparent;
+  o.opaque_shadows_depth_only = true;
+  for (const char* file : {"glass_room_smoke.json", "glass_room_lamp.json", "smoke.json", "hair.json"}) {
+    INFO(file);
+    const scene s = example(file);
+    const render::frame_plan p = render::plan_of(s, o);
+    REQUIRE(p.lookups.size() == s.lights.size());
+    for (std::size_t i = 0; i < s.lights.size(); ++i)
+      CHECK(p.lookups[i] == (!casts_shadows(s.lights[i]) || p.shadows == render::shadow_mode::off            ? render::shadow_mode::off
+                             : p.shadows == render::shadow_mode::transparent && sees_transparency(s, s.lights[i]) ? render::shadow_mode::transparent
+                                                                                                               : render::shadow_mode::opaque));
+    const std::vector<render::light_block> lights = render::light_blocks(s);
+    const frame_schedule plain = render::schedule_of(s, p, o);
+    CHECK(plain.passes.size() > 2);
+    same_passes(plain, render::schedule_of(s, p, o, lights));
+    same_passes(plain, render::schedule_of(s, p, o, {}));  // of another length: computed again
+    const render::particle_plan smoke = render::particle_plan_of(s, p, o);
+    for (const render::particle_plan& other : {render::particle_plan_of(s, p, o, lights), render::particle_plan_of(s, p, o, {})}) {
+      CHECK((other.on == smoke.on && other.baking == smoke.baking && other.shadows == smoke.shadows));
+      CHECK(other.ranges == smoke.ranges);
+      same_lights(other.shadowed_lights, smoke.shadowed_lights);
+      same_lights(other.unshadowed_lights, smoke.unshadowed_lights);
+    }
+  }
+}
+
 TEST_CASE("the exact reference: opaque surfaces deferred, every transparent fragment into the lists, no refraction", "[schedule][exact]") {
   render::options o;
   o.method = render::technique::reference;

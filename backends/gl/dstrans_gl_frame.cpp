@@ -73,6 +73,7 @@ struct renderer::impl {
   frame_plan plan;
   particle_plan smoke;
   frame_schedule schedule;
+  std::vector<light_block> light_data;  // light_blocks(description), computed once: it walks every vertex
   const pass_shaders* shaders = nullptr;
 
   // Made once: programs, the renderer's vertex arrays and meshes, blocks, shadow maps, the light volumes.
@@ -239,7 +240,6 @@ result<bool> renderer::impl::make_fixed() {
     material_textures = *t;
     textures.push_back(material_textures);
   }
-  const std::vector<light_block> light_data = light_blocks(description);
   lights = make_buffer(light_data, "lights");
   buffers.insert(buffers.end(), {frame_ubo, shadow_ubo, materials, lights});
   for (const light_block& l : light_data) {
@@ -614,8 +614,9 @@ result<std::unique_ptr<renderer>> renderer::create(const scene& description, con
   p->description = description;
   p->o = o;
   p->plan = plan_of(description, o);
-  p->smoke = particle_plan_of(description, p->plan, o);
-  p->schedule = schedule_of(description, p->plan, o);
+  p->light_data = light_blocks(description);
+  p->smoke = particle_plan_of(description, p->plan, o, p->light_data);
+  p->schedule = schedule_of(description, p->plan, o, p->light_data);
   p->shaders = &shaders;
   for (auto step : {&impl::make_programs, &impl::make_fixed, &impl::make_sized})
     if (auto ok = ((*p).*step)(); !ok) return failure{ok.error()};

@@ -161,6 +161,7 @@ struct renderer::impl {
   frame_plan plan;
   particle_plan smoke;
   frame_schedule schedule;
+  std::vector<light_block> light_data;  // light_blocks(description), computed once: it walks every vertex
   vertex_input vertices;
   int slots = 2;
 
@@ -405,7 +406,6 @@ result<bool> renderer::impl::make_fixed() {
   const mesh_data sphere = sphere_mesh(1), cone = cone_mesh(16);
   sphere_count = sphere.indices.size();
   cone_count = cone.indices.size();
-  const std::vector<light_block> light_data = light_blocks(description);
   std::vector<std::pair<buffer*, result<buffer>>> made;
   made.emplace_back(&light_index, filled(dev, light_ids, vertex_use, "light indices"));
   made.emplace_back(&sphere_vertices, filled(dev, sphere.positions, vertex_use, "point light volume"));
@@ -1050,8 +1050,9 @@ result<std::unique_ptr<renderer>> renderer::create(device& dev, const scene& des
   p->description = description;
   p->o = o;
   p->plan = plan_of(description, o);
-  p->smoke = particle_plan_of(description, p->plan, o);
-  p->schedule = schedule_of(description, p->plan, o);
+  p->light_data = light_blocks(description);
+  p->smoke = particle_plan_of(description, p->plan, o, p->light_data);
+  p->schedule = schedule_of(description, p->plan, o, p->light_data);
   p->vertices = vertices;
   p->slots = frames_in_flight;
   if (p->plan.on.has(effect::textures)) {

@@ -22,6 +22,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -109,12 +111,9 @@ inline std::pair<glm::vec3, float> bounding_sphere(const object& o) {
   for (const glm::vec3& p : o.geometry.positions) r = std::max(r, glm::length(glm::vec3(o.transform * glm::vec4(p, 1.0f)) - c));
   return {c, r};
 }
-}  // namespace detail
 
-// Whether light l reaches object o's bounding sphere: a directional light reaches every object, a point
-// light those within its range, a spot light those within its cone (outer angle) and range.
-inline bool light_reaches(const light& l, const object& o) {
-  const auto [c, r] = detail::bounding_sphere(o);
+// Whether light l reaches the sphere at `c` of radius `r` (negative: an object without vertices).
+inline bool reaches(const light& l, glm::vec3 c, float r) {
   if (r < 0.0f) return false;
   if (l.kind == light_kind::directional) return true;
   const glm::vec3 v = c - l.position;
@@ -128,6 +127,39 @@ inline bool light_reaches(const light& l, const object& o) {
   return angle - spread < glm::radians(l.outer_angle);
 }
 
+// The bounding spheres of s's transparent objects, with their indices in s.objects: computed once for
+// every light they are tested against, as each walks all of an object's vertices.
+struct placed_sphere {
+  std::size_t object;
+  glm::vec3 centre;
+  float radius;
+};
+inline std::vector<placed_sphere> transparent_spheres(const scene& s) {
+  std::vector<placed_sphere> out;
+  for (std::size_t k = 0; k < s.objects.size(); ++k) {
+    const object& o = s.objects[k];
+    if (o.material >= s.materials.size() || !s.materials[o.material].transparent()) continue;
+    const auto [c, r] = bounding_sphere(o);
+    out.push_back({k, c, r});
+  }
+  return out;
+}
+
+// The first of `spheres` light l reaches, or null.
+inline const placed_sphere* first_reached(const light& l, const std::vector<placed_sphere>& spheres) {
+  for (const placed_sphere& p : spheres)
+    if (reaches(l, p.centre, p.radius)) return &p;
+  return nullptr;
+}
+}  // namespace detail
+
+// Whether light l reaches object o's bounding sphere: a directional light reaches every object, a point
+// light those within its range, a spot light those within its cone (outer angle) and range.
+inline bool light_reaches(const light& l, const object& o) {
+  const auto [c, r] = detail::bounding_sphere(o);
+  return detail::reaches(l, c, r);
+}
+
 // Whether light l casts shadows the renderer draws: spot lights (as in the thesis) from a perspective map,
 // directional lights from an orthographic one over the scene's bounds, point lights from a cube of six
 // perspective maps.
@@ -136,10 +168,7 @@ inline bool casts_shadows(const light& l) { return l.shadows; }
 // Whether the shadow map of light l must hold transparent occluders: it casts shadows and reaches a
 // transparent object of s.
 inline bool sees_transparency(const scene& s, const light& l) {
-  if (!casts_shadows(l)) return false;
-  for (const object& o : s.objects)
-    if (o.material < s.materials.size() && s.materials[o.material].transparent() && light_reaches(l, o)) return true;
-  return false;
+  return casts_shadows(l) && detail::first_reached(l, detail::transparent_spheres(s)) != nullptr;
 }
 
 // The effects scene s calls for, each once, with the first reason found.
@@ -176,16 +205,19 @@ inline std::vector<feature> scene_features(const scene& s) {
     if (s.particles[i].count > 0)
       add(effect::light_volumes, "particles[" + std::to_string(i) + "] draws " + std::to_string(s.particles[i].count) +
                                      " particles of material " + std::to_string(s.particles[i].material));
+  std::optional<std::vector<detail::placed_sphere>> spheres;
+  bool transparent_shadows = false;
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const light& l = s.lights[i];
     if (!casts_shadows(l)) continue;
     const char* kind = l.kind == light_kind::spot ? "spot" : l.kind == light_kind::point ? "point" : "directional";
     add(effect::shadows, "lights[" + std::to_string(i) + "] is a " + kind + " light that casts shadows");
-    for (std::size_t k = 0; k < s.objects.size(); ++k) {
-      const std::uint32_t m = s.objects[k].material;
-      if (m < s.materials.size() && s.materials[m].transparent() && light_reaches(l, s.objects[k]))
-        add(effect::transparent_shadows, "lights[" + std::to_string(i) + "] casts shadows and reaches objects[" +
-                                             std::to_string(k) + "], which is transparent");
+    if (transparent_shadows) continue;  // only the first reason is kept
+    if (!spheres) spheres = detail::transparent_spheres(s);
+    if (const detail::placed_sphere* p = detail::first_reached(l, *spheres)) {
+      add(effect::transparent_shadows, "lights[" + std::to_string(i) + "] casts shadows and reaches objects[" +
+                                           std::to_string(p->object) + "], which is transparent");
+      transparent_shadows = true;
     }
   }
   std::sort(out.begin(), out.end(), [](const feature& a, const feature& b) { return a.what < b.what; });

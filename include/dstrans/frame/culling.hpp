@@ -1,4 +1,5 @@
-// Culling a flattened scene's objects against the clip volume a pass draws them with
+// What a geometry pass draws of a scene: the objects of the set it asks for (draws, for an engine's own
+// meshes by their dstrans material), less those outside the clip volume it draws them with
 // (scheduled_pass::view_proj). An object whose bounding sphere lies wholly outside one of the volume's
 // planes has no triangle that could reach a pixel, so leaving it out changes no pixel; it saves the
 // object's vertices and triangle setup, a third of a point light's shadow pass on a CPU rasteriser,

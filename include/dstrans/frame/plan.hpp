@@ -266,6 +266,10 @@ struct particle_plan {
   std::vector<volume_light> shadowed_lights, unshadowed_lights;
 };
 particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o);
+// The same from `lights`, the scene's light_blocks, where the caller has them (each light_blocks call
+// walks every vertex of the scene for its bounds); `lights` of another length than s.lights is computed
+// again.
+particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o, const std::vector<light_block>& lights);
 std::vector<particle_region> particle_regions(const scene& s, const particle_plan& smoke);
 
 // The passes a frame of `s` runs, in the order both renderers run them (dstrans/frame/schedule.hpp): its
@@ -273,6 +277,9 @@ std::vector<particle_region> particle_regions(const scene& s, const particle_pla
 // the light volumes' atlas, the shadow maps' layers, and "frame" (the composed image), which
 // the post chain reads; the frame's output is the post chain's.
 frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o);
+// The same from `lights`, the scene's light_blocks, where the caller has them (of another length than
+// s.lights: computed again).
+frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o, const std::vector<light_block>& lights);
 
 // The volume mesh a light is drawn with: none (full screen) for directional lights (and for every light
 // with options::fullscreen_lights), a sphere or a cone otherwise. A volume mesh is drawn with its back
@@ -414,14 +421,18 @@ inline std::vector<particle_region> particle_regions(const scene& s, const parti
 }
 
 inline particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o) {
+  return particle_plan_of(s, p, o, light_blocks(s));
+}
+
+inline particle_plan particle_plan_of(const scene& s, const frame_plan& p, const options& o, const std::vector<light_block>& lights) {
+  if (lights.size() != s.lights.size()) return particle_plan_of(s, p, o);
   particle_plan out;
   out.on = p.on.has(effect::light_volumes) && !p.forward;
   out.reference = out.on && (o.particles == options::particle_light::forward || p.exact);
   out.baking = out.on && !out.reference;
   out.atlas = particle_atlas(s, o);
-  const std::vector<light_block> blocks = light_blocks(s);
-  for (std::size_t i = 0; i < blocks.size(); ++i) {
-    const light_block& b = blocks[i];
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const light_block& b = lights[i];
     const volume_light v{glm::vec4(glm::vec3(b.position_range), b.direction_kind.w),
                          glm::vec4(glm::vec3(b.direction_kind), b.position_range.w), b.colour_cos_outer,
                          glm::vec4(b.cos_inner.x, float(i), 0.0f, 0.0f)};
@@ -465,10 +476,12 @@ inline frame_plan plan_of(const scene& s, const options& o) {
               : p.on.has(effect::transparent_shadows) ? shadow_mode::transparent
                                                       : shadow_mode::opaque;
   // A light whose cone reaches no glass looks its map up plainly, unless the transparent lookup is forced.
+  const std::vector<detail::placed_sphere> glass =
+      p.shadows == shadow_mode::transparent ? detail::transparent_spheres(s) : std::vector<detail::placed_sphere>{};
   for (const light& l : s.lights)
     p.lookups.push_back(!casts_shadows(l) || p.shadows == shadow_mode::off ? shadow_mode::off
                         : p.shadows == shadow_mode::transparent &&
-                                (sees_transparency(s, l) || o.force.has(effect::transparent_shadows))
+                                (detail::first_reached(l, glass) || o.force.has(effect::transparent_shadows))
                             ? shadow_mode::transparent
                             : shadow_mode::opaque);
   p.depth_only_shadows = p.shadows == shadow_mode::transparent && o.opaque_shadows_depth_only;
@@ -611,6 +624,11 @@ inline void add_exact(frame_schedule& out, const frame_plan& p, const particle_p
 }  // namespace frame_detail
 
 inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o) {
+  return schedule_of(s, p, o, light_blocks(s));
+}
+
+inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const options& o, const std::vector<light_block>& lights) {
+  if (lights.size() != s.lights.size()) return schedule_of(s, p, o);
   frame_schedule out;
   auto add = [&](pass_step step, const std::string& timer, const std::string& label, pass_kind kind, int light,
                  std::vector<std::string> reads, std::vector<std::string> writes) -> scheduled_pass& {
@@ -642,11 +660,10 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
     if (p.forward_depth) a.clears.push_back(far_plane);
     a.clear_depth = true;
   }
-  const particle_plan smoke = particle_plan_of(s, p, o);
+  const particle_plan smoke = particle_plan_of(s, p, o, lights);
   if (smoke.baking) out.cleared.push_back("volume atlas");
   if (smoke.baking && !smoke.unshadowed_lights.empty())
     add(pass_step::bake, "bake", "bake pass", pass_kind::dispatch, -1, {"scene"}, {"volume atlas"});
-  const std::vector<light_block> lights = light_blocks(s);
   for (std::size_t i = 0; i < s.lights.size(); ++i) {
     const int l = int(i);
     const std::string n = std::to_string(i);
