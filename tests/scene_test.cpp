@@ -9,6 +9,7 @@
 #include <dstrans/particles.hpp>
 #include <dstrans/scene.hpp>
 #include <json_input.hpp>
+#include <same_objects.hpp>
 #include <scene_json.hpp>
 
 using namespace dstrans;
@@ -93,6 +94,29 @@ TEST_CASE("flatten puts every object in world space with its material", "[scene]
   CHECK(m.parts[0].centre == glm::vec3(5, 0, 0));
   CHECK(m.parts[0].radius == Approx(std::sqrt(2.0f)));
   CHECK(m.parts[1].radius == Approx(std::sqrt(0.75f)));
+}
+
+TEST_CASE("same_objects tells frames that can share their meshes; a moved, changed or added object differs", "[scene]") {
+  scene still;
+  still.materials = {material{}, material{glm::vec3(1.0f), 0.5f}};
+  still.objects.push_back({shape_pane({2, 2}), glm::mat4(1.0f), 1});
+  still.objects.push_back({shape_box({1, 1, 1}), glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -2)), 0});
+  scene turned = still;  // another camera: the same objects
+  turned.view.position = glm::vec3(3, 1, 4);
+  CHECK(render::same_objects(still, turned));
+  scene moved = still, changed = still, added = still, recoloured = still, nan = still;
+  moved.objects[0].transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.02f, 0, 0));
+  changed.objects[1].geometry.positions[3].y += 1e-6f;
+  added.objects.push_back(still.objects[0]);
+  recoloured.objects[1].material = 1;
+  nan.objects[0].geometry.normals[0].x = std::numeric_limits<float>::quiet_NaN();
+  for (const scene* other : {&moved, &changed, &added, &recoloured}) CHECK_FALSE(render::same_objects(still, *other));
+  CHECK_FALSE(render::same_objects(nan, nan));
+  // Each frame shares the meshes of the first frame with its objects.
+  CHECK(render::first_with_same_objects({still, turned, moved, still, moved, added}) ==
+        std::vector<std::size_t>{0, 0, 2, 0, 2, 5});
+  CHECK(render::first_with_same_objects({nan, nan}) == std::vector<std::size_t>{0, 1});
+  CHECK(render::first_with_same_objects({}).empty());
 }
 
 TEST_CASE("flatten's parts tile the indices, hair last, each sphere holding its object's vertices", "[scene]") {

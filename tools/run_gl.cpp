@@ -9,6 +9,8 @@
 #include <dstrans/fullscreen.hpp>
 #include <dstrans_gl_frame.hpp>
 
+#include "same_objects.hpp"
+
 namespace dstrans::render {
 
 namespace {
@@ -98,8 +100,12 @@ result<std::vector<frame>> run_gl_sequence(const std::vector<scene>& frames, con
   if (frames.empty()) return out;
   auto r = gl::renderer::create(frames.front(), o, shaders);
   if (!r) return failure{r.error()};
-  for (const scene& s : frames) {
-    const gl::scene_geometry meshes(s);
+  const std::vector<std::size_t> from = first_with_same_objects(frames);
+  std::vector<std::unique_ptr<gl::scene_geometry>> uploaded(frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const scene& s = frames[i];
+    if (from[i] == i) uploaded[i] = std::make_unique<gl::scene_geometry>(s);
+    const gl::scene_geometry& meshes = *uploaded[from[i]];
     (*r)->render(s.view, [&](const scheduled_pass& pass) { meshes(pass); });
     const frame_times t = (*r)->times();
     frame f;
@@ -117,15 +123,16 @@ result<cli::frame_clock> gl_clock(const std::vector<scene>& frames, const option
   if (!r) return failure{r.error()};
   struct running {
     std::unique_ptr<gl::renderer> renderer;
-    std::vector<std::unique_ptr<gl::scene_geometry>> meshes;
+    std::vector<std::shared_ptr<gl::scene_geometry>> meshes;  // a frame each; frames with the same objects share one
     std::vector<camera> views;
     std::size_t next = 0;
   };
   auto on = std::make_shared<running>();
   on->renderer = std::move(*r);
-  for (const scene& s : frames) {
-    on->meshes.push_back(std::make_unique<gl::scene_geometry>(s));
-    on->views.push_back(s.view);
+  const std::vector<std::size_t> from = first_with_same_objects(frames);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    on->meshes.push_back(from[i] == i ? std::make_shared<gl::scene_geometry>(frames[i]) : on->meshes[from[i]]);
+    on->views.push_back(frames[i].view);
   }
   return cli::frame_clock([on]() -> result<frame_times> {
     const std::size_t i = on->next++ % on->views.size();

@@ -10,6 +10,8 @@
 #include <dstrans/fullscreen.hpp>
 #include <dstrans_vk_frame.hpp>
 
+#include "same_objects.hpp"
+
 namespace dstrans::render {
 
 namespace {
@@ -112,10 +114,17 @@ result<std::vector<frame>> run_vk_sequence(vk::device& dev, const std::vector<sc
   if (frames.empty()) return out;
   auto r = vk::renderer::create(dev, frames.front(), o, shaders, vk::vertex_input::streams(has_texture_coordinates(frames.front())));
   if (!r) return failure{r.error()};
-  for (const scene& s : frames) {
-    auto meshes = vk::scene_geometry::create(dev, s);
-    if (!meshes) return failure{meshes.error()};
-    dev.submit([&](VkCommandBuffer cmd) { (*r)->record(cmd, s.view, [&](VkCommandBuffer c, const scheduled_pass& pass) { (**meshes)(c, pass); }); });
+  const std::vector<std::size_t> from = first_with_same_objects(frames);
+  std::vector<std::unique_ptr<vk::scene_geometry>> uploaded(frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const scene& s = frames[i];
+    if (from[i] == i) {
+      auto made = vk::scene_geometry::create(dev, s);
+      if (!made) return failure{made.error()};
+      uploaded[i] = std::move(*made);
+    }
+    const vk::scene_geometry& meshes = *uploaded[from[i]];
+    dev.submit([&](VkCommandBuffer cmd) { (*r)->record(cmd, s.view, [&](VkCommandBuffer c, const scheduled_pass& pass) { meshes(c, pass); }); });
     const frame_times t = (*r)->times();
     frame f;
     f.schedule = t.schedule;
@@ -130,16 +139,21 @@ result<cli::frame_clock> vk_clock(vk::device& dev, const std::vector<scene>& fra
   if (frames.empty()) return failure{"a frame clock needs at least one frame"};
   struct running {
     std::unique_ptr<vk::renderer> renderer;
-    std::vector<std::unique_ptr<vk::scene_geometry>> meshes;
+    std::vector<std::shared_ptr<vk::scene_geometry>> meshes;  // a frame each; frames with the same objects share one
     std::vector<camera> views;
     std::size_t next = 0;
   };
   auto on = std::make_shared<running>();
-  for (const scene& s : frames) {
-    auto meshes = vk::scene_geometry::create(dev, s);
-    if (!meshes) return failure{meshes.error()};
-    on->meshes.push_back(std::move(*meshes));
-    on->views.push_back(s.view);
+  const std::vector<std::size_t> from = first_with_same_objects(frames);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (from[i] == i) {
+      auto made = vk::scene_geometry::create(dev, frames[i]);
+      if (!made) return failure{made.error()};
+      on->meshes.push_back(std::move(*made));
+    } else {
+      on->meshes.push_back(on->meshes[from[i]]);
+    }
+    on->views.push_back(frames[i].view);
   }
   auto r = vk::renderer::create(dev, frames.front(), o, shaders, on->meshes.front()->input());
   if (!r) return failure{r.error()};
