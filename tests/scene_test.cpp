@@ -6,8 +6,10 @@
 #include <map>
 #include <tuple>
 
+#include <dstrans/closed_surface.hpp>
 #include <dstrans/particles.hpp>
 #include <dstrans/scene.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <json_input.hpp>
 #include <same_objects.hpp>
 #include <scene_json.hpp>
@@ -162,6 +164,76 @@ TEST_CASE("a material is opaque unless transparent, alpha-tested or hair, and fl
   for (std::size_t i = 0; i < m.parts.size(); ++i) {
     INFO("part " << i);
     CHECK(m.parts[i].opaque == parts_want[i]);
+  }
+}
+
+TEST_CASE("closed_orientation: which way a closed mesh faces, by its points, and 0 for anything open", "[scene][culling]") {
+  CHECK(closed_orientation(shape_box({1, 2, 3}).positions, shape_box({1, 2, 3}).indices) == 1);
+  const shape room = shape_room({12, 4, 12});
+  CHECK(closed_orientation(room.positions, room.indices) == -1);  // turned inwards
+  // Revolved shapes: seams of repeated vertices, and triangles with two corners at a pole or on a rim
+  // (a cylinder repeats its rims' rings for sharp normals), which cover nothing.
+  for (int slices : {3, 4, 40}) {
+    INFO(slices << " slices");
+    for (const shape& c : {shape_sphere(0.16f, slices), shape_cylinder(0.09f, 0.35f, slices), shape_bottle(0.1f, 0.45f, slices)})
+      CHECK(closed_orientation(c.positions, c.indices) == 1);
+  }
+  const shape pane = shape_pane({2, 1});
+  CHECK(closed_orientation(pane.positions, pane.indices) == 0);
+  // The pane and its back, turned round: closed, but flat.
+  shape sheet = pane;
+  for (std::size_t i = 0; i < pane.indices.size(); i += 3)
+    sheet.indices.insert(sheet.indices.end(), {pane.indices[i], pane.indices[i + 2], pane.indices[i + 1]});
+  CHECK(closed_orientation(sheet.positions, sheet.indices) == 0);
+  shape box = shape_box({1, 1, 1});
+  shape open = box;
+  open.indices.resize(open.indices.size() - 3);  // a hole
+  CHECK(closed_orientation(open.positions, open.indices) == 0);
+  shape flipped = box;
+  std::swap(flipped.indices[1], flipped.indices[2]);  // one triangle turned round
+  CHECK(closed_orientation(flipped.positions, flipped.indices) == 0);
+  // Two pieces: both outwards, or one of them inside out.
+  shape two = box, mixed = box;
+  for (shape* t : {&two, &mixed}) {
+    const auto base = std::uint32_t(t->positions.size());
+    for (glm::vec3 p : box.positions) t->positions.push_back(p + glm::vec3(3, 0, 0));
+    for (std::size_t i = 0; i < box.indices.size(); i += 3)
+      t->indices.insert(t->indices.end(), {base + box.indices[i], base + box.indices[i + (t == &two ? 1 : 2)],
+                                           base + box.indices[i + (t == &two ? 2 : 1)]});
+  }
+  CHECK(closed_orientation(two.positions, two.indices) == 1);
+  CHECK(closed_orientation(mixed.positions, mixed.indices) == 0);
+  CHECK(closed_orientation({}, {}) == 0);
+  shape out_of_range = box;
+  out_of_range.indices.back() = 999;
+  CHECK(closed_orientation(out_of_range.positions, out_of_range.indices) == 0);
+  shape nan = box;
+  nan.positions[0].x = std::numeric_limits<float>::quiet_NaN();
+  CHECK(closed_orientation(nan.positions, nan.indices) == 0);
+  // -0 is the point +0 is.
+  std::vector<glm::vec3> tetra = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-0.0f, 0, 0}};
+  CHECK(closed_orientation(tetra, {0, 2, 1, 4, 1, 3, 0, 3, 2, 1, 2, 3}) == 1);
+}
+
+TEST_CASE("flatten's parts are closed where their triangles face out of a closed surface in world space and drop no fragment",
+          "[scene][culling]") {
+  scene s;
+  s.materials.resize(4);
+  s.materials[1].alpha = 0.5f;         // glass: its nearest surface is kept as an opaque one's
+  s.materials[2].alpha_cutoff = 0.5f;  // alpha-tested: a back face shows through the holes
+  s.materials[3].hair = true;
+  const glm::mat4 mirror = glm::scale(glm::mat4(1.0f), glm::vec3(-1, 1, 1));
+  s.objects = {{shape_box({1, 1, 1}), glm::mat4(1.0f), 0}, {shape_sphere(1.0f, 12), glm::mat4(1.0f), 1},
+               {shape_box({1, 1, 1}), glm::mat4(1.0f), 2}, {shape_pane({1, 1}), glm::mat4(1.0f), 0},
+               {shape_box({1, 1, 1}), mirror, 0},  // a mirror turns its faces inwards
+               {shape_room({4, 4, 4}), glm::mat4(1.0f), 0}, {shape_room({4, 4, 4}), mirror, 0},  // and a room's outwards
+               {shape_box({1, 1, 1}), glm::mat4(1.0f), 3}};
+  const scene_mesh m = flatten(s);
+  REQUIRE(m.parts.size() == 8);
+  const bool want[] = {true, true, false, false, false, false, true, false};
+  for (std::size_t i = 0; i < m.parts.size(); ++i) {
+    INFO("part " << i);
+    CHECK(m.parts[i].closed == want[i]);
   }
 }
 

@@ -431,6 +431,84 @@ TEST_CASE("visible_runs splits a pass's parts by mesh_part::opaque for the two p
   CHECK(visible_runs({}, 30, 36, pass).empty());
 }
 
+TEST_CASE("culls_back_faces: a pass that keeps the nearest surface culls a closed part wholly beyond its near plane", "[schedule][culling]") {
+  scheduled_pass pass;
+  pass.state.cull_closed = true;
+  mesh_part part{0, 6, {0, 0, -5}, 1.0f, true, true};
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  // OpenGL's and Vulkan's depth ranges: near plane 1, far 10.
+  for (const glm::mat4& m : {glm::perspective(glm::radians(90.0f), 1.0f, 1.0f, 10.0f), glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, 1.0f, 10.0f)}) {
+    pass.view_proj = m;
+    part.centre = {0, 0, -5};
+    CHECK(culls_back_faces(pass, part));
+    part.centre = {0, 0, -1.5f};  // across the near plane: clipping opens it
+    CHECK_FALSE(culls_back_faces(pass, part));
+    part.centre = {0, 0, 0};  // around the viewpoint
+    CHECK_FALSE(culls_back_faces(pass, part));
+    part.centre = {nan, 0, -5};
+    CHECK_FALSE(culls_back_faces(pass, part));
+  }
+  // Beyond the near plane by a hair more than the radius: Vulkan's depth range (dstrans's on both APIs)
+  // clips there; OpenGL's default one's 0 <= z lies farther out, so such a matrix culls a little less.
+  part.centre = {0, 0, -2.1f};
+  CHECK(culls_back_faces(pass, part));
+  pass.view_proj = glm::perspective(glm::radians(90.0f), 1.0f, 1.0f, 10.0f);
+  CHECK_FALSE(culls_back_faces(pass, part));
+  part.centre = {0, 0, -5};
+  part.closed = false;
+  CHECK_FALSE(culls_back_faces(pass, part));
+  part.closed = true;
+  pass.state.cull_closed = false;  // a pass that keeps more than the nearest surface
+  CHECK_FALSE(culls_back_faces(pass, part));
+  pass.state.cull_closed = true;
+  pass.view_proj = glm::mat4(0.0f);  // unknown
+  CHECK_FALSE(culls_back_faces(pass, part));
+  // An orthographic view (a directional light's) has no viewpoint: only its near plane counts.
+  pass.view_proj = glm::orthoRH_ZO(-10.0f, 10.0f, -10.0f, 10.0f, 1.0f, 20.0f);
+  CHECK(culls_back_faces(pass, part));
+  part.centre = {0, 0, -1.5f};
+  CHECK_FALSE(culls_back_faces(pass, part));
+}
+
+TEST_CASE("visible_runs joins neighbouring parts only where both may cull their back faces or neither", "[schedule][culling]") {
+  const glm::vec3 in(0, 0, -5);
+  // Closed, closed, open, closed, closed (hair from 30).
+  const std::vector<mesh_part> parts = {{0, 6, in, 1.0f, true, true},   {6, 6, in, 1.0f, true, true}, {12, 6, in, 1.0f, true, false},
+                                        {18, 6, in, 1.0f, false, true}, {24, 6, in, 1.0f, false, true}};
+  scheduled_pass pass;
+  pass.view_proj = glm::perspective(glm::radians(90.0f), 1.0f, 1.0f, 10.0f);
+  pass.draws = geometry_set::everything;
+  pass.state.cull_closed = true;
+  auto runs = visible_runs(parts, 30, 30, pass);
+  REQUIRE(runs.size() == 3);
+  CHECK((runs[0].first == 0 && runs[0].count == 12 && runs[0].cull_back));
+  CHECK((runs[1].first == 12 && runs[1].count == 6 && !runs[1].cull_back));
+  CHECK((runs[2].first == 18 && runs[2].count == 12 && runs[2].cull_back));
+  pass.state.cull_closed = false;
+  runs = visible_runs(parts, 30, 30, pass);
+  REQUIRE(runs.size() == 1);
+  CHECK((runs[0].count == 30 && !runs[0].cull_back));
+  CHECK_FALSE(visible_runs({}, 30, 30, pass).front().cull_back);  // without parts nothing is known closed
+}
+
+TEST_CASE("the shadow passes, and only they, may cull closed objects, of which glass_room's spheres and bottles are", "[schedule][culling]") {
+  const scene s = example("glass_room.json");
+  const scene_mesh m = flatten(s);
+  std::size_t closed = 0;
+  for (const mesh_part& part : m.parts) closed += part.closed;
+  CHECK(closed > m.parts.size() / 2);
+  render::options o;
+  o.opaque_shadows_depth_only = true;
+  const frame_schedule sched = render::schedule_of(s, render::plan_of(s, o), o);
+  std::size_t culled = 0;
+  for (const scheduled_pass& pass : sched.passes) {
+    INFO(pass.label);
+    CHECK(pass.state.cull_closed == (pass.step == pass_step::shadow));
+    for (const index_run& run : visible_runs(m.parts, m.hair_first, m.indices.size(), pass)) culled += run.cull_back ? run.count : 0;
+  }
+  CHECK(culled > 0);
+}
+
 TEST_CASE("draws tells an engine's callback, for every set, the objects visible_runs draws of dstrans's own mesh", "[schedule][culling]") {
   material opaque, glass, cut, hair, unknown;
   glass.alpha = 0.4f;

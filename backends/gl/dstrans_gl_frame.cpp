@@ -735,14 +735,31 @@ scene_geometry::~scene_geometry() {
 void scene_geometry::operator()(const scheduled_pass& pass) const {
   const std::vector<index_run> runs = visible_runs(parts_, hair_first_, index_count_, pass);
   if (runs.empty()) return;
-  std::vector<GLsizei> counts;
-  std::vector<const void*> offsets;
-  for (const index_run& run : runs) {
-    counts.push_back(GLsizei(run.count));
-    offsets.push_back(reinterpret_cast<const void*>(run.first * sizeof(std::uint32_t)));
-  }
   glBindVertexArray(vertex_array_);
-  glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), GLsizei(runs.size()));
+  // The runs that may cull their back faces are drawn as one call with GL_BACK culled, the others as one
+  // with the caller's culling, which is then left as it was.
+  for (const bool cull : {false, true}) {
+    std::vector<GLsizei> counts;
+    std::vector<const void*> offsets;
+    for (const index_run& run : runs)
+      if (run.cull_back == cull) {
+        counts.push_back(GLsizei(run.count));
+        offsets.push_back(reinterpret_cast<const void*>(run.first * sizeof(std::uint32_t)));
+      }
+    if (counts.empty()) continue;
+    if (!cull) {
+      glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), GLsizei(counts.size()));
+      continue;
+    }
+    const GLboolean culled_before = glIsEnabled(GL_CULL_FACE);
+    GLint face_before = GL_BACK;
+    glGetIntegerv(GL_CULL_FACE_MODE, &face_before);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), GLsizei(counts.size()));
+    if (!culled_before) glDisable(GL_CULL_FACE);
+    glCullFace(GLenum(face_before));
+  }
 }
 
 }  // namespace dstrans::gl

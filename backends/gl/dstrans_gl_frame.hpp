@@ -93,7 +93,8 @@ class scene_geometry {
   ~scene_geometry();
   scene_geometry(const scene_geometry&) = delete;
   scene_geometry& operator=(const scene_geometry&) = delete;
-  // Draws what `pass` asks for, less the objects outside its clip volume (frame/culling.hpp).
+  // Draws what `pass` asks for, less the objects outside its clip volume, with the back faces of the
+  // closed objects it may cull culled (frame/culling.hpp); the face culling state is left as it was.
   void operator()(const scheduled_pass& pass) const;
 
  private:

@@ -101,6 +101,9 @@ result<std::unique_ptr<device>> device::create(const context& ctx) {
     d->begin_rendering_ = reinterpret_cast<PFN_vkCmdBeginRendering>(vkGetDeviceProcAddr(ctx.device, "vkCmdBeginRenderingKHR"));
     d->end_rendering_ = reinterpret_cast<PFN_vkCmdEndRendering>(vkGetDeviceProcAddr(ctx.device, "vkCmdEndRenderingKHR"));
   }
+  d->set_cull_mode_ = reinterpret_cast<PFN_vkCmdSetCullMode>(vkGetDeviceProcAddr(ctx.device, "vkCmdSetCullMode"));
+  if (!d->set_cull_mode_)
+    d->set_cull_mode_ = reinterpret_cast<PFN_vkCmdSetCullMode>(vkGetDeviceProcAddr(ctx.device, "vkCmdSetCullModeEXT"));
   if (!d->begin_rendering_ || !d->end_rendering_)
     return failure{"the device has no dynamic rendering (Vulkan 1.3, or VK_KHR_dynamic_rendering on 1.2)"};
   d->name(VK_OBJECT_TYPE_COMMAND_POOL, std::uint64_t(d->pool_), "dstrans commands");
@@ -570,9 +573,9 @@ result<pipeline> device::make_graphics_pipeline(const shader& vertex, const shad
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = std::uint32_t(blends.size());
   blend.pAttachments = blends.data();
-  const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE};
   VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  dynamic.dynamicStateCount = 2;
+  dynamic.dynamicStateCount = state.dynamic_cull && set_cull_mode_ ? 3 : 2;
   dynamic.pDynamicStates = dynamic_states;
   std::vector<VkFormat> formats;
   for (format f : color_formats) formats.push_back(VkFormat(info(f).vk_format));
@@ -685,6 +688,12 @@ result<std::vector<double>> device::submit_passes() {
   for (std::size_t k = 0; k < passes_; ++k) out.push_back(ms(ticks[2 + 2 * k], ticks[3 + 2 * k]));
   out.push_back(ms(ticks[0], ticks[1]));
   return out;
+}
+
+bool device::set_cull_mode(VkCommandBuffer cmd, VkCullModeFlags mode) const {
+  if (!set_cull_mode_) return false;
+  set_cull_mode_(cmd, mode);
+  return true;
 }
 
 void device::begin_rendering(VkCommandBuffer cmd, const targets& t, const std::vector<glm::vec4>& clear, bool optimal) {

@@ -97,6 +97,8 @@ struct pipeline_state {
   // cleared to (0, 0, 0, 1) ends holding what it keeps of what lies behind it.
   bool transmit_alpha = false;
   VkCullModeFlags cull = VK_CULL_MODE_NONE;  // counter-clockwise faces are front faces
+  // The cull mode is set while recording (device::set_cull_mode), where the device can; `cull` otherwise.
+  bool dynamic_cull = false;
   // Depth clamped instead of clipping at the near and far planes (needs the device feature depthClamp).
   bool depth_clamp = false;
 };
@@ -180,6 +182,10 @@ class device {
   // Narrows the rendering begun to `area` (x, y from the top left, width, height): viewport and scissor.
   static void set_area(VkCommandBuffer cmd, glm::ivec4 area);
   void end_rendering(VkCommandBuffer cmd);
+  // Sets the cull mode of a pipeline made with pipeline_state::dynamic_cull (vkCmdSetCullMode: Vulkan 1.3,
+  // or VK_EXT_extended_dynamic_state where the engine enabled it); false, doing nothing, where the device
+  // has neither, and its pipelines keep pipeline_state::cull.
+  bool set_cull_mode(VkCommandBuffer cmd, VkCullModeFlags mode) const;
 
   // How many memory blocks (vkAllocateMemory calls) the device holds now.
   std::size_t memory_blocks() const;
@@ -224,6 +230,7 @@ class device {
   double timestamp_ns_ = 1.0;
   PFN_vkSetDebugUtilsObjectNameEXT set_name_ = nullptr;
   PFN_vkCmdBeginRendering begin_rendering_ = nullptr;
+  PFN_vkCmdSetCullMode set_cull_mode_ = nullptr;
   PFN_vkCmdEndRendering end_rendering_ = nullptr;
   std::map<std::uint64_t, std::unique_ptr<shader>> shaders_;
   std::map<std::string, pipeline> formula_pipelines_;

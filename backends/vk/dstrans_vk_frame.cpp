@@ -318,12 +318,15 @@ result<bool> renderer::impl::make_pipelines(const pass_shaders& sh, const std::v
   for (int k = 0; k < plan.layers; ++k)
     made.push_back(graphics(gbuffer[k], gbuffer_pass(sh, plan.peeling ? (k ? layer::second : layer::first) : layer::interlaced, plan.on, o),
                             gbuffer_formats, "gbuffer pass", scene_state));
+  // Shadow passes cull the back faces of closed objects (scene_geometry, pass_state::cull_closed).
+  pipeline_state shadow_state = scene_state;
+  shadow_state.dynamic_cull = true;
   if (mode != shadow_mode::off)
     made.push_back(graphics(shadow, shadow_pass(sh, mode, plan.shadow_effects()), formats_of(shadow_targets(mode)), "shadow pass",
-                            plan.textured_shadows ? scene_state : without_texture_coordinates(scene_state)));
+                            plan.textured_shadows ? shadow_state : without_texture_coordinates(shadow_state)));
   if (plan.depth_only_shadows)
     made.push_back(graphics(shadow_depth, shadow_pass(sh, mode, effects{}, true), formats_of(shadow_targets(mode)),
-                            "shadow pass, opaque surfaces", without_texture_coordinates(scene_state)));
+                            "shadow pass, opaque surfaces", without_texture_coordinates(shadow_state)));
   for (shadow_mode k : all_lookups)
     for (int vol = 0; vol < 2 && !plan.forward && plan.uses(k); ++vol) {
       // Volumes are drawn with their back faces, depth clamped (dstrans/frame/plan.hpp, volume).
@@ -972,6 +975,8 @@ void renderer::impl::run(VkCommandBuffer cmd, const scheduled_pass& pass, VkDesc
     if (pass.area.z > 0) dev.set_area(cmd, pass.area);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.handle);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipe.layout, 0, 1, &set, 0, nullptr);
+    // An engine's own geometry callback may draw with it unchanged: no faces culled.
+    if (pass.step == pass_step::shadow) dev.set_cull_mode(cmd, VK_CULL_MODE_NONE);
   }
   if (zero_uv_binding >= 0 && draws_geometry(pass.step)) vkCmdBindVertexBuffers(cmd, std::uint32_t(zero_uv_binding), 1, &zero_uv.handle, &zero);
   switch (pass.step) {
@@ -1183,7 +1188,16 @@ void scene_geometry::operator()(VkCommandBuffer cmd, const scheduled_pass& pass)
   vkCmdBindVertexBuffers(cmd, 0, 3, streams, offsets);
   if (buffers_[4].handle) vkCmdBindVertexBuffers(cmd, texture_coordinates_binding, 1, &buffers_[4].handle, offsets);
   vkCmdBindIndexBuffer(cmd, buffers_[3].handle, 0, VK_INDEX_TYPE_UINT32);
-  for (const index_run& run : runs) vkCmdDrawIndexed(cmd, std::uint32_t(run.count), 1, std::uint32_t(run.first), 0, 0);
+  // A pass that may cull closed objects' back faces is drawn with a pipeline whose cull mode is dynamic
+  // (pipeline_state::dynamic_cull): it is set for each run, and left as the pass's own after the last.
+  const VkCullModeFlags own = pass.state.cull == culling::front ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_NONE;
+  bool culling_back = false;
+  for (const index_run& run : runs) {
+    if (pass.state.cull_closed && run.cull_back != culling_back && dev_.set_cull_mode(cmd, run.cull_back ? VkCullModeFlags(VK_CULL_MODE_BACK_BIT) : own))
+      culling_back = run.cull_back;
+    vkCmdDrawIndexed(cmd, std::uint32_t(run.count), 1, std::uint32_t(run.first), 0, 0);
+  }
+  if (culling_back) dev_.set_cull_mode(cmd, own);
 }
 
 }  // namespace dstrans::vk

@@ -120,7 +120,9 @@ class scene_geometry {
   ~scene_geometry();
   scene_geometry(const scene_geometry&) = delete;
   scene_geometry& operator=(const scene_geometry&) = delete;
-  // Binds the streams and draws what `pass` asks for, less the objects outside its clip volume.
+  // Binds the streams and draws what `pass` asks for, less the objects outside its clip volume, with the
+  // back faces of the closed objects it may cull culled (frame/culling.hpp) where the bound pipeline takes
+  // its cull mode as dynamic state (pipeline_state::dynamic_cull) and the device can set it.
   void operator()(VkCommandBuffer cmd, const scheduled_pass& pass) const;
   // The vertex input of its streams, for renderer::create.
   vertex_input input() const;

@@ -8,6 +8,7 @@
 //   std::puts(src.str().c_str());
 #pragma once
 
+#include "closed_surface.hpp"
 #include "format.hpp"
 #include "frame/blocks.hpp"
 #include "frame/culling.hpp"

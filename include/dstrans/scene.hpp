@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "closed_surface.hpp"
 #include "post.hpp"
 #include "surface.hpp"
 
@@ -132,13 +133,16 @@ struct scene {
 };
 
 // One object's indices in a scene_mesh, `count` from `first`, a sphere that holds its vertices (world
-// space), against which a pass culls it (frame/culling.hpp), and whether its material is opaque
-// (material::opaque: geometry_set::opaque draws it).
+// space), against which a pass culls it (frame/culling.hpp), whether its material is opaque
+// (material::opaque: geometry_set::opaque draws it), and whether it is closed: its triangles face out of
+// the space they enclose (closed_orientation 1 in world space) and no fragment of it is dropped (not hair,
+// not alpha-tested), so that a pass that keeps the nearest surface may cull its back faces.
 struct mesh_part {
   std::size_t first = 0, count = 0;
   glm::vec3 centre{0.0f};
   float radius = 0.0f;
   bool opaque = false;
+  bool closed = false;
 };
 
 // A whole scene in world space, for one draw call: vertex i has positions[i], normals[i], materials[i]
@@ -180,8 +184,12 @@ inline scene_mesh flatten(const scene& s) {
         m.materials.push_back(o.material);
         if (uvs) m.uvs.push_back(i < o.geometry.uvs.size() ? o.geometry.uvs[i] : glm::vec2(0.0f));
       }
-      mesh_part part{m.indices.size(), o.geometry.indices.size(), 0.5f * (lo + hi), 0.0f,
-                     o.material < s.materials.size() && s.materials[o.material].opaque()};
+      const material* mat = o.material < s.materials.size() ? &s.materials[o.material] : nullptr;
+      mesh_part part{m.indices.size(), o.geometry.indices.size(), 0.5f * (lo + hi), 0.0f, mat && mat->opaque()};
+      // A mirroring transform turns the triangles' facing round.
+      const float handedness = glm::determinant(glm::mat3(o.transform));
+      part.closed = !hair && !(mat && mat->alpha_cutoff > 0.0f) &&
+                    float(closed_orientation(o.geometry.positions, o.geometry.indices)) * handedness > 0.0f;
       for (std::size_t i = base; i < m.positions.size(); ++i) part.radius = std::max(part.radius, glm::length(m.positions[i] - part.centre));
       for (std::uint32_t i : o.geometry.indices) m.indices.push_back(base + i);
       m.parts.push_back(part);
@@ -209,7 +217,8 @@ inline shape revolve(const std::vector<glm::vec2>& profile, int slices) {
     const glm::vec2 tangent = glm::normalize(next - prev);
     const glm::vec2 n2(tangent.y, -tangent.x);  // outward for a profile that goes up
     for (int k = 0; k <= slices; ++k) {
-      const float a = two_pi * float(k) / float(slices), c = std::cos(a), sn = std::sin(a);
+      // The seam's last column repeats the first exactly, so that the surface closes (closed_orientation).
+      const float a = two_pi * float(k % slices) / float(slices), c = std::cos(a), sn = std::sin(a);
       s.positions.push_back({profile[i].x * c, profile[i].y, profile[i].x * sn});
       s.normals.push_back(glm::normalize(glm::vec3(n2.x * c, n2.y, n2.x * sn)));
     }

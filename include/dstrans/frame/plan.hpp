@@ -682,6 +682,7 @@ inline frame_schedule schedule_of(const scene& s, const frame_plan& p, const opt
           sh.index = v;
           sh.view_proj = light_frame(s, lights[i], o, v).view_proj;
           sh.state = depth_tested;
+          sh.state.cull_closed = true;
           sh.draws = set;
           if (v == 0 && first)  // a cube's later faces keep what the first one cleared
             sh.clears = p.shadows == shadow_mode::transparent ? std::vector<glm::vec4>{far_plane, far_plane} : std::vector<glm::vec4>{far_plane};

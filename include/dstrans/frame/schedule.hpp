@@ -59,6 +59,9 @@ struct pass_state {
   bool depth_write = false, depth_clamp = false;
   blending blend = blending::off;
   culling cull = culling::off;
+  // The pass keeps only the nearest surface at each pixel (a shadow map), so it may cull the back faces of
+  // closed objects wherever that changes no pixel (culls_back_faces, frame/culling.hpp; index_run::cull_back).
+  bool cull_closed = false;
 };
 
 // What the engine draws in a geometry pass: every surface but hair, the hair, or both; the particles' quads
@@ -102,6 +105,7 @@ struct frame_schedule {
 // that draws `set` draws, not knowing which objects are opaque: none for `opaque`, all for `not_opaque`.
 struct index_run {
   std::size_t first = 0, count = 0;
+  bool cull_back = false;  // its triangles may be drawn with their back faces culled (visible_runs)
 };
 inline index_run drawn_indices(geometry_set set, std::size_t hair_first, std::size_t count) {
   if (set == geometry_set::none || set == geometry_set::opaque) return {};
