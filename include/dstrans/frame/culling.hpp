@@ -61,7 +61,11 @@ inline bool outside_clip(const glm::mat4& view_proj, glm::vec3 centre, float rad
 // range (OpenGL's default, or Vulkan's, which dstrans uses on both APIs) is taken at its own near plane or
 // farther. The viewpoint then lies outside the part and no plane cuts it open, so every ray from the
 // viewpoint meets one of its front faces before any of its back faces, and culling these changes no
-// pixel. The margin is outside_clip's; a zero or NaN matrix culls no faces.
+// pixel, but on a silhouette: where a front and a back face meet, their interpolated depths can round
+// apart, and the back face win a texel by an ulp; culled, the front face keeps it, as exact depths would.
+// The shadow passes alone ask for it: a G-buffer texel holds the winner's normal, and culled G-buffer
+// passes moved a glass pixel of a temporal frame 2 codes away from depth peeling's. The margin is
+// outside_clip's; a zero or NaN matrix culls no faces.
 inline bool culls_back_faces(const scheduled_pass& pass, const mesh_part& part) {
   if (!pass.state.cull_closed || !part.closed) return false;
   const glm::mat4 rows = glm::transpose(pass.view_proj);

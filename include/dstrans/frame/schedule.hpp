@@ -60,7 +60,8 @@ struct pass_state {
   blending blend = blending::off;
   culling cull = culling::off;
   // The pass keeps only the nearest surface at each pixel (a shadow map), so it may cull the back faces of
-  // closed objects wherever that changes no pixel (culls_back_faces, frame/culling.hpp; index_run::cull_back).
+  // closed objects wherever that changes no texel but by rounding on a silhouette (culls_back_faces,
+  // frame/culling.hpp; index_run::cull_back).
   bool cull_closed = false;
 };
 
