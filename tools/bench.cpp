@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -1088,6 +1089,7 @@ int bench(std::vector<std::string> args) {
                                                     {"frames", f->frames},
                                                     {"forced", c.force.names()}}},
                                       {"effects", render::plan_of(s, options_of(c.method)).on.names()},
+                                      {"triangles", flatten(s).indices.size() / 3},
                                       {"memory_bytes", c.method == T::interlaced ? json(memory) : json(nullptr)},
                                       {"frame_ms", f->frame_ms},
                                       {"frame_ms_spread", f->frame_ms_spread},
@@ -1269,6 +1271,8 @@ int bench(std::vector<std::string> args) {
       const auto& [name, driver] = ran_on.at(r["backend"].get<std::string>());
       r["device"] = name;
       r["driver"] = driver;
+      // A CPU rasteriser's speed scales with them; 0 where the standard library cannot tell.
+      r["host_threads"] = std::thread::hardware_concurrency();
     }
     auto written = dir->add("results.json", results.dump(1) + "\n");
     for (const auto& [name, png] : strips)
