@@ -274,7 +274,7 @@ def main():
     if specular:
         write_specular(w, specular)
     if paths:
-        write_paths(w, paths)
+        write_paths(w, paths, paired)
     if shelf:
         write_gltf(w, shelf)
     if around:
@@ -844,8 +844,10 @@ def write_around_glass(w, rows):
     w("")
 
 
-def write_paths(w, paths):
-    """Temporal interlacing along camera paths, each method's frames against peeling's of the same frame."""
+def write_paths(w, paths, paired):
+    """Temporal interlacing along camera paths, each method's frames against peeling's of the same frame;
+    beside the temporal method's times, the thesis's interlacing against peeling at the paths' light count,
+    timed in pairs (the targets' table), where that backend has the pair."""
     first = paths[0]["settings"]
     w("")
     w("## Temporal interlacing along camera paths")
@@ -907,6 +909,14 @@ def write_paths(w, paths):
                 and r["flip_transparent_against_exact"] <= 1.1 * peeled[r["settings"]["path"]]["flip_transparent_against_exact"]]
         w("Its FLIP on glass against the exact reference is within 10%% of peeling's own on %s." % (
             ", ".join(near) if near else "no path"))
+        thesis = [r for r in paired if r["backend"] == backend and r["settings"]["lights"] == first["lights"]
+                  and r["technique"] == "peeling / interlaced, transparent shadows" and r["scene"] == "glass_room_paired"]
+        if thesis:
+            r = thesis[0]
+            w("For comparison, the thesis's interlacing takes %.2fx [%.2f, %.2f] of peeling's time at %d lights with "
+              "transparent shadows, timed in pairs (the targets' table); the temporal method runs the same shadow "
+              "and light passes." % (
+                  1.0 / r["ratio"], 1.0 / r["high"], 1.0 / r["low"], first["lights"]))
         w("![the last frame of each path on %s](temporal_%s.png)" % (backend, backend))
         w("")
 
