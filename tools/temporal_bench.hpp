@@ -41,7 +41,8 @@ struct temporal_results {
 // (edge-aware reconstruction, compact layout), the temporal one (temporal interlacing over the partner fetch,
 // compact layout) and depth peeling (in both layouts); each frame after the first against peeling's of the
 // same frame in the method's layout, on the glass peeling's first layer holds: mean and worst errors, the
-// RMSE against Table 3.1's peeling, the frame-to-frame change (on the still path, the flicker), the mean
+// RMSE against Table 3.1's peeling, the frame-to-frame change from the second frame on (on the still path,
+// the flicker once the temporal method has a history; null with fewer than three frames), the mean
 // FLIP on glass against the exact reference of each frame (null where its lists overflowed), the median
 // frame time and bytes a pixel, with Table 3.1 peeling's time beside them. The temporal method's time is
 // also taken frame against frame with Table 3.1 peeling's along the path on `clock` (time_paired, `count`
